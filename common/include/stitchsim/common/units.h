@@ -1,0 +1,27 @@
+#pragma once
+// Length and angle units at the text boundary. Inside, lengths are millimetres in the part
+// and process code, metres in the robot model; angles are radians.
+
+#include <optional>
+#include <string_view>
+
+namespace stitchsim {
+
+inline constexpr double kMmPerInch = 25.4;
+inline constexpr double kPi = 3.14159265358979323846;
+
+inline constexpr double DegToRad(double deg) { return deg * kPi / 180.0; }
+inline constexpr double RadToDeg(double rad) { return rad * 180.0 / kPi; }
+
+enum class LengthUnit { kMillimetre, kInch, kMetre };
+
+/// "mm", "in", "m" -> unit; nullopt otherwise.
+std::optional<LengthUnit> ParseLengthUnit(std::string_view name);
+
+/// Millimetres per one `unit`.
+double MmPer(LengthUnit unit);
+
+/// "mm" / "in" / "m".
+std::string_view UnitName(LengthUnit unit);
+
+}  // namespace stitchsim

@@ -1,0 +1,55 @@
+#include "stitchsim/common/files.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+namespace stitchsim {
+
+std::string WriteFileAtomically(const std::filesystem::path& path, std::string_view contents) {
+  namespace fs = std::filesystem;
+  fs::path tmp = path;
+  tmp += ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) return "cannot write " + tmp.string();
+    out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+    out.flush();
+    if (!out) {
+      std::error_code ignored;
+      fs::remove(tmp, ignored);
+      return "write failed for " + tmp.string();
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    return "cannot rename " + tmp.string() + " to " + path.string() + ": " + ec.message();
+  }
+  return {};
+}
+
+std::optional<std::string> ReadFile(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::filesystem::path DataDir() {
+  if (const char* env = std::getenv("STITCHSIM_DATA_DIR"); env != nullptr && *env != '\0') {
+    return env;
+  }
+  return STITCHSIM_DEFAULT_DATA_DIR;
+}
+
+}  // namespace stitchsim

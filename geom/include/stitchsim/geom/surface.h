@@ -1,0 +1,82 @@
+#pragma once
+// Stitching surfaces. Every surface is parametrised over a 2D domain (u, v) in millimetres
+// so that paths can be drawn "on the surface": a path is a 2D curve in (u, v), lifted onto
+// the surface. Positions are in the part frame, millimetres. Normals are unit vectors that
+// point away from the mold, towards the head.
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace stitchsim::geom {
+
+/// Axis-aligned rectangle of the (u, v) domain, millimetres.
+struct Domain2 {
+  Eigen::Vector2d min = Eigen::Vector2d::Zero();
+  Eigen::Vector2d max = Eigen::Vector2d::Zero();
+  bool Contains(const Eigen::Vector2d& uv, double tol_mm = 1e-9) const;
+};
+
+/// Result of a closest-point query.
+struct SurfaceProjection {
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();         ///< parameter of the foot point (mm)
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();      ///< foot point, part frame (mm)
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();    ///< unit normal at the foot point
+  double signed_distance_mm = 0.0;  ///< query point minus foot point, along the normal
+  bool inside_domain = true;        ///< false if the foot point was clamped to the domain
+};
+
+/// Triangle mesh: vertices (mm, part frame) and counter-clockwise triangles (outward normals).
+struct TriangleMesh {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<Eigen::Vector3i> triangles;
+};
+
+class Surface {
+ public:
+  virtual ~Surface() = default;
+  virtual std::string Kind() const = 0;
+  virtual Domain2 Domain() const = 0;
+  /// Point on the surface at (u, v), part frame, mm.
+  virtual Eigen::Vector3d Point(const Eigen::Vector2d& uv) const = 0;
+  /// Unit normal at (u, v), pointing towards the head.
+  virtual Eigen::Vector3d Normal(const Eigen::Vector2d& uv) const = 0;
+  /// d Point / d(u, v) (columns: du, dv).
+  virtual Eigen::Matrix<double, 3, 2> Jacobian(const Eigen::Vector2d& uv) const;
+  /// Closest point on the surface to `p` (part frame, mm).
+  virtual SurfaceProjection Project(const Eigen::Vector3d& p) const;
+  /// Where the line p + t*dir crosses the surface nearest to p; false if it does not.
+  virtual bool IntersectLine(const Eigen::Vector3d& p, const Eigen::Vector3d& dir,
+                             Eigen::Vector3d& hit) const;
+  /// Grid resolution (cells along u and v) that tessellates the surface to `chord_tol_mm`.
+  virtual Eigen::Vector2i TessellationCells(double chord_tol_mm) const;
+};
+
+/// Plane z = 0 of the part frame, normal +z, domain centred on the origin.
+std::unique_ptr<Surface> MakePlane(double size_u_mm, double size_v_mm);
+
+/// Cylinder with its axis parallel to part x. u = axial position, v = arc length around
+/// the circumference measured from the crown (the point at the part origin). `outside`:
+/// convex (axis at z = -r, normal outward); inside: concave (axis at z = +r, normal towards
+/// the axis). Domain: u in [-length/2, length/2], v in [-arc/2, arc/2].
+std::unique_ptr<Surface> MakeCylinder(double radius_mm, bool outside, double length_mm,
+                                      double arc_length_mm);
+
+/// Height field z = sum c[i][j] x^i y^j over a rectangle (x, y in mm, z in mm). u = x, v = y.
+/// Coefficients are in millimetre units already (c[i][j] has units mm^(1-i-j)).
+std::unique_ptr<Surface> MakePolynomialHeightField(const Eigen::Matrix4d& coeff_mm,
+                                                   const Domain2& domain);
+
+/// A triangle mesh used as a height field: u = x, v = y, z from the triangle above (x, y).
+/// Normals are interpolated vertex normals. The mesh must be single-valued over (x, y).
+std::unique_ptr<Surface> MakeMeshSurface(TriangleMesh mesh);
+
+/// Tessellates a closed slab between the surface and the surface offset along the normal by
+/// `offset_bottom_mm` .. `offset_top_mm` (a solid with side walls). Used for the mold
+/// (e.g. -depth..0) and the preform (0..thickness).
+TriangleMesh TessellateSlab(const Surface& surface, const Domain2& domain,
+                            double offset_bottom_mm, double offset_top_mm,
+                            double chord_tol_mm);
+
+}  // namespace stitchsim::geom

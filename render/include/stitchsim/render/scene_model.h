@@ -1,0 +1,35 @@
+#pragma once
+// Composes the MuJoCo model of a scene: the cell MJCF with the head bolted to the flange and
+// the part (mold, preform, constraints) on its mount, and loads it from memory.
+
+#include <mujoco/mujoco.h>
+
+#include <memory>
+#include <string>
+
+#include "stitchsim/common/diagnostics.h"
+#include "stitchsim/scene/scene.h"
+
+namespace stitchsim::render {
+
+struct MjModelDeleter {
+  void operator()(mjModel* m) const { mj_deleteModel(m); }
+};
+struct MjDataDeleter {
+  void operator()(mjData* d) const { mj_deleteData(d); }
+};
+using MjModelPtr = std::unique_ptr<mjModel, MjModelDeleter>;
+using MjDataPtr = std::unique_ptr<mjData, MjDataDeleter>;
+
+/// Names of the geoms stitchsim adds, for segmentation and highlighting.
+inline constexpr const char* kMoldGeom = "part_mold";
+inline constexpr const char* kPreformGeom = "part_preform";
+inline constexpr const char* kConstraintGeomPrefix = "constraint_";
+
+/// The MJCF text of the whole scene (cell + head + part).
+std::string ComposeSceneMjcf(const scene::Scene& scene, DiagnosticSink& sink);
+
+/// Composes and compiles the scene; a MuJoCo compile error becomes a diagnostic.
+MjModelPtr LoadSceneModel(const scene::Scene& scene, DiagnosticSink& sink);
+
+}  // namespace stitchsim::render

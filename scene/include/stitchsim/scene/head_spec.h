@@ -1,0 +1,73 @@
+#pragma once
+// A head's process description (models/heads/<name>.yaml): tool frame, needles, stitch
+// cycle parameters and default rule limits. Lengths mm, angles radians inside.
+
+#include <Eigen/Geometry>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stitchsim/common/diagnostics.h"
+
+namespace stitchsim::scene {
+
+enum class HeadKind { kSingleSidedStitch, kDoubleSidedStitch, kAfp };
+
+/// A needle as a line in the tool frame.
+struct NeedleSpec {
+  std::string name;
+  Eigen::Vector3d through_mm = Eigen::Vector3d::Zero();  ///< axis crossing of the plane z = 0
+  Eigen::Vector3d direction = -Eigen::Vector3d::UnitZ();  ///< unit, into the preform
+};
+
+/// Stitch-cycle parameters (stitching heads).
+struct StitchProcessSpec {
+  double nominal_length_mm = 5.0;
+  double width_mm = 17.0;          ///< insertion-catcher spacing on the surface (RS535)
+  double phase_in = 0.15;          ///< cycle fraction when the needles enter the preform
+  double phase_out = 0.85;         ///< cycle fraction when they leave it
+  double walk_capacity_mm = 4.0;   ///< needle walk available per stitch
+  double preform_thickness_mm = 12.0;
+  double stitch_rate_per_min = 300.0;
+  double rotation_speed_deg_s = 30.0;
+  double settle_time_s = 0.15;
+  double rapid_speed_mm_s = 500.0;
+};
+
+struct AfpSpec {
+  int tows = 16;
+  double tow_width_mm = 6.35;
+  double roller_radius_mm = 40.0;
+  double min_steering_radius_mm = 635.0;
+  double layup_speed_mm_s = 200.0;
+  double rapid_speed_mm_s = 500.0;
+};
+
+/// Rule id -> limit key (e.g. "error_mm") -> value. Units are in the key names.
+using RuleLimits = std::map<std::string, std::map<std::string, double>>;
+
+struct HeadSpec {
+  std::filesystem::path file;
+  std::string name;
+  std::string description;
+  HeadKind kind = HeadKind::kSingleSidedStitch;
+  int tool_number = 1;
+  std::filesystem::path mjcf;       ///< absolute path of the head's MJCF fragment
+  Eigen::Isometry3d flange_to_tool_m = Eigen::Isometry3d::Identity();  ///< metres
+  std::vector<NeedleSpec> needles;
+  StitchProcessSpec stitch;
+  AfpSpec afp;
+  RuleLimits limits;
+  bool IsStitching() const { return kind != HeadKind::kAfp; }
+};
+
+/// Loads a head spec; diagnostics (file:line:col, codes "head-...") on bad input.
+std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, DiagnosticSink& sink);
+
+/// models/heads/<name>.yaml under the data dir, or `name_or_path` itself if it is a path.
+std::filesystem::path ResolveHeadFile(const std::string& name_or_path,
+                                      const std::filesystem::path& relative_to);
+
+}  // namespace stitchsim::scene

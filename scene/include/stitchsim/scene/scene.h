@@ -1,0 +1,66 @@
+#pragma once
+// A scene (scenes/*.yaml): the part on its mount, the stitching surface, preform, mold,
+// constraints, named paths and stitch parameters, plus the head. Format: docs/scene-format.md.
+// Inside, part-frame lengths are millimetres and cell transforms are metres.
+
+#include <Eigen/Geometry>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stitchsim/common/diagnostics.h"
+#include "stitchsim/common/units.h"
+#include "stitchsim/geom/curve.h"
+#include "stitchsim/geom/surface.h"
+#include "stitchsim/scene/head_spec.h"
+
+namespace stitchsim::scene {
+
+enum class Mount { kTable, kRotator };
+
+/// An obstacle that must not be stitched through (stringer, intercostal, spar cap).
+struct Constraint {
+  std::string name;
+  enum class Shape { kBox, kMesh } shape = Shape::kBox;
+  Eigen::Isometry3d pose_mm = Eigen::Isometry3d::Identity();  ///< box centre, part frame
+  Eigen::Vector3d size_mm = Eigen::Vector3d::Zero();          ///< box full extents
+  geom::TriangleMesh mesh;                                     ///< part frame, mm
+  SourceLocation where;
+};
+
+/// A named path: a 2D curve in the surface's (u, v) domain.
+struct PathSpec {
+  std::string name;
+  std::string type;  ///< line | arc | circle | polyline | slot
+  std::unique_ptr<geom::Curve2> curve;
+  SourceLocation where;
+};
+
+struct Scene {
+  std::filesystem::path file;
+  std::string name;
+  LengthUnit units = LengthUnit::kMillimetre;  ///< unit of lengths in the file
+  std::filesystem::path cell_urdf;
+  std::filesystem::path cell_mjcf;
+  HeadSpec head;
+  Mount mount = Mount::kTable;
+  Eigen::Isometry3d mount_to_part_m = Eigen::Isometry3d::Identity();  ///< metres
+  std::unique_ptr<geom::Surface> surface;
+  double preform_thickness_mm = 12.0;
+  double mold_depth_mm = 50.0;
+  std::vector<Constraint> constraints;
+  std::vector<PathSpec> paths;
+  double nominal_stitch_length_mm = 5.0;
+  RuleLimits limits;  ///< head defaults merged with the scene's overrides
+  double rail_offset_mm = 0.0;  ///< rail policy: carriage x minus tool x (world), preferred
+
+  const PathSpec* FindPath(const std::string& path_name) const;
+};
+
+/// Loads and validates a scene. Every problem is a diagnostic with file:line:col and a
+/// stable code ("scene-..."); returns nullptr if any error was reported.
+std::unique_ptr<Scene> LoadScene(const std::filesystem::path& file, DiagnosticSink& sink);
+
+}  // namespace stitchsim::scene

@@ -1,0 +1,172 @@
+#include "stitchsim/scene/head_spec.h"
+
+#include <cmath>
+
+#include "stitchsim/common/files.h"
+#include "stitchsim/common/units.h"
+#include "stitchsim/geom/rotation.h"
+#include "yaml_reader.h"
+
+namespace stitchsim::scene {
+
+std::filesystem::path ResolveHeadFile(const std::string& name_or_path,
+                                      const std::filesystem::path& relative_to) {
+  const std::filesystem::path p(name_or_path);
+  if (p.has_extension()) return p.is_absolute() ? p : relative_to / p;
+  return DataDir() / "models" / "heads" / (name_or_path + ".yaml");
+}
+
+std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, DiagnosticSink& sink) {
+  detail::YamlReader r(file, sink, "head");
+  const std::size_t errors_before = sink.ErrorCount();
+  auto root = r.LoadFile();
+  if (!root) return std::nullopt;
+  if (!r.ExpectMap(*root, "a head spec")) return std::nullopt;
+  r.CheckKeys(*root,
+              {"stitchsim_head", "name", "description", "kind", "tool_number", "mjcf",
+               "tool_frame", "needles", "stitch", "afp", "limits"},
+              "head spec");
+  HeadSpec h;
+  h.file = file;
+  if (auto n = r.Child(*root, "name", true)) {
+    if (auto s = r.String(*n, "name")) h.name = *s;
+  }
+  if (auto n = r.Child(*root, "description", false)) {
+    if (auto s = r.String(*n, "description")) h.description = *s;
+  }
+  if (auto n = r.Child(*root, "kind", true)) {
+    if (auto s = r.String(*n, "kind")) {
+      if (*s == "single_sided_stitch") {
+        h.kind = HeadKind::kSingleSidedStitch;
+      } else if (*s == "double_sided_stitch") {
+        h.kind = HeadKind::kDoubleSidedStitch;
+      } else if (*s == "afp") {
+        h.kind = HeadKind::kAfp;
+      } else {
+        r.Error(*n, "bad-value",
+                "kind must be single_sided_stitch, double_sided_stitch or afp, got '" + *s + "'");
+      }
+    }
+  }
+  if (auto n = r.Child(*root, "tool_number", true)) {
+    if (auto v = r.Number(*n, "tool_number")) h.tool_number = static_cast<int>(*v);
+  }
+  if (auto n = r.Child(*root, "mjcf", true)) {
+    if (auto s = r.String(*n, "mjcf")) {
+      h.mjcf = file.parent_path() / *s;
+      std::error_code ec;
+      if (!std::filesystem::exists(h.mjcf, ec)) {
+        r.Error(*n, "missing-file", "head MJCF not found: " + h.mjcf.string());
+      }
+    }
+  }
+  if (auto tf = r.Child(*root, "tool_frame", true); tf && r.ExpectMap(*tf, "tool_frame")) {
+    r.CheckKeys(*tf, {"position_mm", "rotation_deg"}, "tool_frame");
+    Eigen::Vector3d pos = Eigen::Vector3d::Zero();
+    Eigen::Vector3d rot = Eigen::Vector3d::Zero();
+    if (auto n = r.Child(*tf, "position_mm", true)) {
+      if (auto v = r.Vector(*n, 3, "tool_frame.position_mm")) pos = *v;
+    }
+    if (auto n = r.Child(*tf, "rotation_deg", true)) {
+      if (auto v = r.Vector(*n, 3, "tool_frame.rotation_deg")) rot = *v;
+    }
+    h.flange_to_tool_m.setIdentity();
+    h.flange_to_tool_m.translation() = pos / 1000.0;
+    h.flange_to_tool_m.linear() =
+        geom::RotationFromEuler(geom::EulerOrder{}, rot * (kPi / 180.0));
+  }
+  if (auto nd = r.Child(*root, "needles", true)) {
+    if (!nd->IsSequence()) {
+      r.Error(*nd, "type", "needles must be a list");
+    } else {
+      for (const auto& item : *nd) {
+        if (!r.ExpectMap(item, "a needle")) continue;
+        r.CheckKeys(item, {"name", "through_mm", "direction"}, "needle");
+        NeedleSpec ns;
+        if (auto n = r.Child(item, "name", true)) {
+          if (auto s = r.String(*n, "needle name")) ns.name = *s;
+        }
+        if (auto n = r.Child(item, "through_mm", true)) {
+          if (auto v = r.Vector(*n, 3, "needle through_mm")) ns.through_mm = *v;
+        }
+        if (auto n = r.Child(item, "direction", true)) {
+          if (auto v = r.Vector(*n, 3, "needle direction")) {
+            if (v->norm() < 1e-9 || (*v)[2] >= 0) {
+              r.Error(*n, "out-of-range", "needle direction must be non-zero and point into the "
+                                          "preform (negative z)");
+            } else {
+              ns.direction = v->normalized();
+            }
+          }
+        }
+        h.needles.push_back(ns);
+      }
+    }
+  }
+  if (auto st = r.Child(*root, "stitch", h.kind != HeadKind::kAfp);
+      st && r.ExpectMap(*st, "stitch")) {
+    r.CheckKeys(*st,
+                {"nominal_length_mm", "width_mm", "needle_in_phase", "walk_capacity_mm",
+                 "preform_thickness_mm", "stitch_rate_per_min", "rotation_speed_deg_s",
+                 "settle_time_s", "rapid_speed_mm_s"},
+                "stitch");
+    auto& s = h.stitch;
+    auto num = [&](std::string_view key, double& out, bool allow_zero) {
+      if (auto n = r.Child(*st, key, true)) {
+        if (auto v = r.Number(*n, key); v && r.Positive(*n, *v, key, allow_zero)) out = *v;
+      }
+    };
+    num("nominal_length_mm", s.nominal_length_mm, false);
+    num("width_mm", s.width_mm, true);
+    num("walk_capacity_mm", s.walk_capacity_mm, true);
+    num("preform_thickness_mm", s.preform_thickness_mm, false);
+    num("stitch_rate_per_min", s.stitch_rate_per_min, false);
+    num("rotation_speed_deg_s", s.rotation_speed_deg_s, false);
+    num("settle_time_s", s.settle_time_s, true);
+    num("rapid_speed_mm_s", s.rapid_speed_mm_s, false);
+    if (auto n = r.Child(*st, "needle_in_phase", true)) {
+      if (auto v = r.Vector(*n, 2, "needle_in_phase")) {
+        if ((*v)[0] < 0 || (*v)[1] > 1 || (*v)[0] >= (*v)[1]) {
+          r.Error(*n, "out-of-range", "needle_in_phase must be [in, out] with 0 <= in < out <= 1");
+        } else {
+          s.phase_in = (*v)[0];
+          s.phase_out = (*v)[1];
+        }
+      }
+    }
+  }
+  if (auto af = r.Child(*root, "afp", h.kind == HeadKind::kAfp); af && r.ExpectMap(*af, "afp")) {
+    r.CheckKeys(*af,
+                {"tows", "tow_width_mm", "roller_radius_mm", "min_steering_radius_mm",
+                 "layup_speed_mm_s", "rapid_speed_mm_s"},
+                "afp");
+    auto num = [&](std::string_view key, double& out) {
+      if (auto n = r.Child(*af, key, true)) {
+        if (auto v = r.Number(*n, key); v && r.Positive(*n, *v, key)) out = *v;
+      }
+    };
+    double tows = 16;
+    num("tows", tows);
+    h.afp.tows = static_cast<int>(tows);
+    num("tow_width_mm", h.afp.tow_width_mm);
+    num("roller_radius_mm", h.afp.roller_radius_mm);
+    num("min_steering_radius_mm", h.afp.min_steering_radius_mm);
+    num("layup_speed_mm_s", h.afp.layup_speed_mm_s);
+    num("rapid_speed_mm_s", h.afp.rapid_speed_mm_s);
+  }
+  if (auto lim = r.Child(*root, "limits", false); lim && r.ExpectMap(*lim, "limits")) {
+    for (const auto& rule : *lim) {
+      const std::string id = rule.first.Scalar();
+      if (!r.ExpectMap(rule.second, "limits of " + id)) continue;
+      for (const auto& kv : rule.second) {
+        if (auto v = r.Number(kv.second, id + "." + kv.first.Scalar())) {
+          h.limits[id][kv.first.Scalar()] = *v;
+        }
+      }
+    }
+  }
+  if (sink.ErrorCount() > errors_before) return std::nullopt;
+  return h;
+}
+
+}  // namespace stitchsim::scene

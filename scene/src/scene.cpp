@@ -1,0 +1,520 @@
+#include "stitchsim/scene/scene.h"
+
+#include <cmath>
+#include <set>
+
+#include "stitchsim/common/files.h"
+#include "stitchsim/geom/rotation.h"
+#include "stitchsim/geom/stl.h"
+#include "yaml_reader.h"
+
+namespace stitchsim::scene {
+namespace {
+
+constexpr double kDeg = kPi / 180.0;
+
+class SceneLoader {
+ public:
+  SceneLoader(const std::filesystem::path& file, DiagnosticSink& sink)
+      : r_(file, sink, "scene"), sink_(sink) {}
+
+  std::unique_ptr<Scene> Load() {
+    const std::size_t errors_before = sink_.ErrorCount();
+    auto root = r_.LoadFile();
+    if (!root) return nullptr;
+    if (!r_.ExpectMap(*root, "a scene")) return nullptr;
+    r_.CheckKeys(*root,
+                 {"stitchsim_scene", "name", "description", "units", "head", "cell", "part",
+                  "surface", "preform", "mold", "stitch", "constraints", "paths", "limits",
+                  "rail"},
+                 "scene");
+    auto scene = std::make_unique<Scene>();
+    scene->file = r_.File();
+    const auto dir = r_.File().parent_path();
+    if (auto n = r_.Child(*root, "name", true)) {
+      if (auto s = r_.String(*n, "name")) scene->name = *s;
+    }
+    if (auto n = r_.Child(*root, "units", true)) {
+      if (auto s = r_.String(*n, "units")) {
+        if (auto u = ParseLengthUnit(*s)) {
+          scene->units = *u;
+        } else {
+          r_.Error(*n, "bad-unit", "units must be mm, in or m, got '" + *s + "'");
+        }
+      }
+    }
+    unit_ = scene->units;
+    // Cell model: default is the bundled ISAAC-like cell.
+    scene->cell_urdf = DataDir() / "models" / "isaac_cell.urdf";
+    scene->cell_mjcf = DataDir() / "models" / "isaac_cell.xml";
+    if (auto n = r_.Child(*root, "cell", false); n && r_.ExpectMap(*n, "cell")) {
+      r_.CheckKeys(*n, {"urdf", "mjcf"}, "cell");
+      if (auto u = r_.Child(*n, "urdf", true)) {
+        if (auto s = r_.String(*u, "cell.urdf")) scene->cell_urdf = RequireFile(*u, dir / *s);
+      }
+      if (auto m = r_.Child(*n, "mjcf", true)) {
+        if (auto s = r_.String(*m, "cell.mjcf")) scene->cell_mjcf = RequireFile(*m, dir / *s);
+      }
+    }
+    if (auto n = r_.Child(*root, "head", true)) {
+      if (auto s = r_.String(*n, "head")) {
+        const auto head_file = ResolveHeadFile(*s, dir);
+        std::error_code ec;
+        if (!std::filesystem::exists(head_file, ec)) {
+          r_.Error(*n, "unknown-head",
+                   "unknown head '" + *s + "' (no head spec at " + head_file.string() + ")");
+        } else if (auto h = LoadHeadSpec(head_file, sink_)) {
+          scene->head = std::move(*h);
+        }
+      }
+    }
+    scene->preform_thickness_mm = scene->head.stitch.preform_thickness_mm;
+    scene->nominal_stitch_length_mm = scene->head.stitch.nominal_length_mm;
+    scene->limits = scene->head.limits;
+    ReadPart(*root, *scene);
+    ReadSurface(*root, *scene, dir);
+    ReadPreformAndMold(*root, *scene);
+    ReadStitch(*root, *scene);
+    ReadConstraints(*root, *scene, dir);
+    ReadPaths(*root, *scene);
+    ReadLimits(*root, *scene);
+    ReadRail(*root, *scene);
+    if (sink_.ErrorCount() > errors_before) return nullptr;
+    return scene;
+  }
+
+ private:
+  std::filesystem::path RequireFile(const YAML::Node& n, const std::filesystem::path& p) {
+    std::error_code ec;
+    if (!std::filesystem::exists(p, ec)) r_.Error(n, "missing-file", "file not found: " + p.string());
+    return p;
+  }
+
+  std::optional<double> LengthKey(const YAML::Node& map, std::string_view key, bool required,
+                                  bool positive) {
+    auto n = r_.Child(map, key, required);
+    if (!n) return std::nullopt;
+    auto v = r_.Length(*n, unit_, key);
+    if (v && positive && !r_.Positive(*n, *v, key)) return std::nullopt;
+    return v;
+  }
+
+  std::optional<double> NumberKey(const YAML::Node& map, std::string_view key, bool required) {
+    auto n = r_.Child(map, key, required);
+    if (!n) return std::nullopt;
+    return r_.Number(*n, key);
+  }
+
+  std::optional<Eigen::Vector2d> Point2(const YAML::Node& map, std::string_view key,
+                                        bool required) {
+    auto n = r_.Child(map, key, required);
+    if (!n) return std::nullopt;
+    auto v = r_.Vector(*n, 2, key, unit_);
+    if (!v) return std::nullopt;
+    return Eigen::Vector2d((*v)[0], (*v)[1]);
+  }
+
+  void ReadPart(const YAML::Node& root, Scene& scene) {
+    auto part = r_.Child(root, "part", true);
+    if (!part || !r_.ExpectMap(*part, "part")) return;
+    r_.CheckKeys(*part, {"mount", "position", "rotation_deg"}, "part");
+    if (auto n = r_.Child(*part, "mount", true)) {
+      if (auto s = r_.String(*n, "part.mount")) {
+        if (*s == "table") {
+          scene.mount = Mount::kTable;
+        } else if (*s == "rotator") {
+          scene.mount = Mount::kRotator;
+        } else {
+          r_.Error(*n, "bad-value", "part.mount must be table or rotator, got '" + *s + "'");
+        }
+      }
+    }
+    Eigen::Vector3d pos = Eigen::Vector3d::Zero();
+    Eigen::Vector3d rot = Eigen::Vector3d::Zero();
+    if (auto n = r_.Child(*part, "position", false)) {
+      if (auto v = r_.Vector(*n, 3, "part.position", unit_)) pos = *v;
+    }
+    if (auto n = r_.Child(*part, "rotation_deg", false)) {
+      if (auto v = r_.Vector(*n, 3, "part.rotation_deg")) rot = *v;
+    }
+    scene.mount_to_part_m.setIdentity();
+    scene.mount_to_part_m.translation() = pos / 1000.0;
+    scene.mount_to_part_m.linear() = geom::RotationFromEuler(geom::EulerOrder{}, rot * kDeg);
+  }
+
+  void ReadSurface(const YAML::Node& root, Scene& scene, const std::filesystem::path& dir) {
+    auto s = r_.Child(root, "surface", true);
+    if (!s || !r_.ExpectMap(*s, "surface")) return;
+    auto type_node = r_.Child(*s, "type", true);
+    if (!type_node) return;
+    auto type = r_.String(*type_node, "surface.type");
+    if (!type) return;
+    if (*type == "plane") {
+      r_.CheckKeys(*s, {"type", "size"}, "plane surface");
+      auto n = r_.Child(*s, "size", true);
+      if (!n) return;
+      auto v = r_.Vector(*n, 2, "surface.size", unit_);
+      if (v && r_.Positive(*n, v->minCoeff(), "surface.size")) {
+        scene.surface = geom::MakePlane((*v)[0], (*v)[1]);
+      }
+    } else if (*type == "cylinder") {
+      r_.CheckKeys(*s, {"type", "radius", "side", "length", "arc_length"}, "cylinder surface");
+      auto radius = LengthKey(*s, "radius", true, true);
+      auto length = LengthKey(*s, "length", true, true);
+      auto arc = LengthKey(*s, "arc_length", true, true);
+      bool outside = true;
+      if (auto n = r_.Child(*s, "side", true)) {
+        if (auto side = r_.String(*n, "side")) {
+          if (*side == "inside") {
+            outside = false;
+          } else if (*side != "outside") {
+            r_.Error(*n, "bad-value", "side must be outside or inside, got '" + *side + "'");
+            return;
+          }
+        }
+      }
+      if (radius && length && arc) {
+        if (*arc >= 2 * kPi * *radius) {
+          r_.Error(*s, "out-of-range", "arc_length must be less than the full circumference");
+          return;
+        }
+        scene.surface = geom::MakeCylinder(*radius, outside, *length, *arc);
+      }
+    } else if (*type == "polynomial") {
+      r_.CheckKeys(*s, {"type", "size", "coefficients"}, "polynomial surface");
+      auto size_node = r_.Child(*s, "size", true);
+      auto coeff_node = r_.Child(*s, "coefficients", true);
+      if (!size_node || !coeff_node) return;
+      auto size = r_.Vector(*size_node, 2, "surface.size", unit_);
+      if (!size || !r_.Positive(*size_node, size->minCoeff(), "surface.size")) return;
+      // z = sum c_ij x^i y^j in scene units; convert to mm: c_ij * u^(1-i-j).
+      if (!coeff_node->IsSequence() || coeff_node->size() != 4) {
+        r_.Error(*coeff_node, "type", "coefficients must be a 4x4 list (c[i][j] of x^i y^j)");
+        return;
+      }
+      Eigen::Matrix4d c = Eigen::Matrix4d::Zero();
+      const double u = MmPer(unit_);
+      for (int i = 0; i < 4; ++i) {
+        auto row = r_.Vector((*coeff_node)[static_cast<std::size_t>(i)], 4, "coefficients row");
+        if (!row) return;
+        for (int j = 0; j < 4; ++j) c(i, j) = (*row)[j] * std::pow(u, 1 - i - j);
+      }
+      geom::Domain2 d;
+      d.min = -Eigen::Vector2d((*size)[0], (*size)[1]) / 2;
+      d.max = -d.min;
+      scene.surface = geom::MakePolynomialHeightField(c, d);
+    } else if (*type == "mesh") {
+      r_.CheckKeys(*s, {"type", "file"}, "mesh surface");
+      auto n = r_.Child(*s, "file", true);
+      if (!n) return;
+      auto f = r_.String(*n, "surface.file");
+      if (!f) return;
+      geom::TriangleMesh mesh;
+      std::string err;
+      const auto path = dir / *f;
+      std::error_code ec;
+      if (!std::filesystem::exists(path, ec)) {
+        r_.Error(*n, "missing-file", "STL file not found: " + path.string());
+        return;
+      }
+      if (!geom::ReadStl(path, MmPer(unit_), mesh, err)) {
+        r_.Error(*n, "bad-mesh", err);
+        return;
+      }
+      scene.surface = geom::MakeMeshSurface(std::move(mesh));
+    } else {
+      r_.Error(*type_node, "bad-value",
+               "surface.type must be plane, cylinder, polynomial or mesh, got '" + *type + "'");
+    }
+  }
+
+  void ReadPreformAndMold(const YAML::Node& root, Scene& scene) {
+    if (auto p = r_.Child(root, "preform", false); p && r_.ExpectMap(*p, "preform")) {
+      r_.CheckKeys(*p, {"thickness"}, "preform");
+      if (auto t = LengthKey(*p, "thickness", true, true)) scene.preform_thickness_mm = *t;
+    }
+    if (auto m = r_.Child(root, "mold", false); m && r_.ExpectMap(*m, "mold")) {
+      r_.CheckKeys(*m, {"depth"}, "mold");
+      if (auto t = LengthKey(*m, "depth", true, true)) scene.mold_depth_mm = *t;
+    }
+  }
+
+  void ReadStitch(const YAML::Node& root, Scene& scene) {
+    if (auto st = r_.Child(root, "stitch", false); st && r_.ExpectMap(*st, "stitch")) {
+      r_.CheckKeys(*st, {"nominal_length"}, "stitch");
+      if (auto l = LengthKey(*st, "nominal_length", true, true)) {
+        scene.nominal_stitch_length_mm = *l;
+      }
+    }
+  }
+
+  void ReadConstraints(const YAML::Node& root, Scene& scene, const std::filesystem::path& dir) {
+    auto cs = r_.Child(root, "constraints", false);
+    if (!cs) return;
+    if (!cs->IsSequence()) {
+      r_.Error(*cs, "type", "constraints must be a list");
+      return;
+    }
+    std::set<std::string> names;
+    for (const auto& item : *cs) {
+      if (!r_.ExpectMap(item, "a constraint")) continue;
+      Constraint c;
+      c.where = r_.At(item);
+      if (auto n = r_.Child(item, "name", true)) {
+        if (auto s = r_.String(*n, "constraint name")) {
+          c.name = *s;
+          if (!names.insert(*s).second) {
+            r_.Error(*n, "duplicate-name", "constraint '" + *s + "' is defined twice");
+          }
+        }
+      }
+      auto tn = r_.Child(item, "type", true);
+      if (!tn) continue;
+      auto type = r_.String(*tn, "constraint type");
+      if (!type) continue;
+      if (*type == "box") {
+        r_.CheckKeys(item, {"name", "type", "center", "size", "rotation_deg"}, "box constraint");
+        Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+        Eigen::Vector3d rot = Eigen::Vector3d::Zero();
+        if (auto n = r_.Child(item, "center", true)) {
+          if (auto v = r_.Vector(*n, 3, "center", unit_)) centre = *v;
+        }
+        if (auto n = r_.Child(item, "size", true)) {
+          if (auto v = r_.Vector(*n, 3, "size", unit_); v && r_.Positive(*n, v->minCoeff(), "size")) {
+            c.size_mm = *v;
+          }
+        }
+        if (auto n = r_.Child(item, "rotation_deg", false)) {
+          if (auto v = r_.Vector(*n, 3, "rotation_deg")) rot = *v;
+        }
+        c.shape = Constraint::Shape::kBox;
+        c.pose_mm.setIdentity();
+        c.pose_mm.translation() = centre;
+        c.pose_mm.linear() = geom::RotationFromEuler(geom::EulerOrder{}, rot * kDeg);
+      } else if (*type == "mesh") {
+        r_.CheckKeys(item, {"name", "type", "file"}, "mesh constraint");
+        auto n = r_.Child(item, "file", true);
+        if (!n) continue;
+        auto f = r_.String(*n, "file");
+        if (!f) continue;
+        const auto path = dir / *f;
+        std::error_code ec;
+        if (!std::filesystem::exists(path, ec)) {
+          r_.Error(*n, "missing-file", "STL file not found: " + path.string());
+          continue;
+        }
+        std::string err;
+        if (!geom::ReadStl(path, MmPer(unit_), c.mesh, err)) {
+          r_.Error(*n, "bad-mesh", err);
+          continue;
+        }
+        c.shape = Constraint::Shape::kMesh;
+      } else {
+        r_.Error(*tn, "bad-value", "constraint type must be box or mesh, got '" + *type + "'");
+        continue;
+      }
+      scene.constraints.push_back(std::move(c));
+    }
+  }
+
+  void ReadPaths(const YAML::Node& root, Scene& scene) {
+    auto ps = r_.Child(root, "paths", true);
+    if (!ps) return;
+    if (!ps->IsSequence() || ps->size() == 0) {
+      r_.Error(*ps, "type", "paths must be a non-empty list");
+      return;
+    }
+    std::set<std::string> names;
+    for (const auto& item : *ps) {
+      if (!r_.ExpectMap(item, "a path")) continue;
+      PathSpec p;
+      p.where = r_.At(item);
+      if (auto n = r_.Child(item, "name", true)) {
+        if (auto s = r_.String(*n, "path name")) {
+          p.name = *s;
+          if (!names.insert(*s).second) {
+            r_.Error(*n, "duplicate-name", "path '" + *s + "' is defined twice");
+          }
+        }
+      }
+      auto tn = r_.Child(item, "type", true);
+      if (!tn) continue;
+      auto type = r_.String(*tn, "path type");
+      if (!type) continue;
+      p.type = *type;
+      p.curve = std::make_unique<geom::Curve2>();
+      if (!BuildCurve(item, *tn, *type, *p.curve)) continue;
+      if (scene.surface) CheckInDomain(item, p, *scene.surface);
+      scene.paths.push_back(std::move(p));
+    }
+  }
+
+  bool BuildCurve(const YAML::Node& item, const YAML::Node& type_node, const std::string& type,
+                  geom::Curve2& curve) {
+    if (type == "line") {
+      r_.CheckKeys(item, {"name", "type", "from", "to"}, "line path");
+      auto a = Point2(item, "from", true);
+      auto b = Point2(item, "to", true);
+      if (!a || !b) return false;
+      if ((*a - *b).norm() < 1e-9) {
+        r_.Error(item, "degenerate-path", "line path has zero length");
+        return false;
+      }
+      curve.Add(geom::MakeLineSegment(*a, *b), "line");
+      return true;
+    }
+    if (type == "arc" || type == "circle") {
+      const bool circle = type == "circle";
+      if (circle) {
+        r_.CheckKeys(item, {"name", "type", "center", "radius", "start_deg", "direction"},
+                     "circle path");
+      } else {
+        r_.CheckKeys(item, {"name", "type", "center", "radius", "start_deg", "end_deg"},
+                     "arc path");
+      }
+      auto c = Point2(item, "center", true);
+      auto radius = LengthKey(item, "radius", true, true);
+      double start = 0.0;
+      if (auto v = NumberKey(item, "start_deg", !circle)) start = *v;
+      double end = start + 360.0;
+      if (circle) {
+        if (auto n = r_.Child(item, "direction", false)) {
+          auto d = r_.String(*n, "direction");
+          if (d && *d == "cw") {
+            end = start - 360.0;
+          } else if (d && *d != "ccw") {
+            r_.Error(*n, "bad-value", "direction must be ccw or cw, got '" + *d + "'");
+            return false;
+          }
+        }
+      } else if (auto v = NumberKey(item, "end_deg", true)) {
+        end = *v;
+        if (std::abs(end - start) < 1e-9 || std::abs(end - start) > 360.0) {
+          r_.Error(item, "degenerate-path", "arc sweep must be non-zero and at most 360 deg");
+          return false;
+        }
+      } else {
+        return false;
+      }
+      if (!c || !radius) return false;
+      curve.Add(geom::MakeEllipticArc(*c, *radius, *radius, 0.0, start * kDeg, end * kDeg),
+                type);
+      return true;
+    }
+    if (type == "polyline") {
+      r_.CheckKeys(item, {"name", "type", "points", "closed"}, "polyline path");
+      auto n = r_.Child(item, "points", true);
+      if (!n) return false;
+      if (!n->IsSequence() || n->size() < 2) {
+        r_.Error(*n, "type", "points must be a list of at least two [u, v] points");
+        return false;
+      }
+      std::vector<Eigen::Vector2d> pts;
+      for (const auto& pn : *n) {
+        auto v = r_.Vector(pn, 2, "point", unit_);
+        if (!v) return false;
+        pts.emplace_back((*v)[0], (*v)[1]);
+      }
+      bool closed = false;
+      if (auto cn = r_.Child(item, "closed", false)) {
+        if (auto b = r_.Bool(*cn, "closed")) closed = *b;
+      }
+      if (closed) pts.push_back(pts.front());
+      for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+        if ((pts[i + 1] - pts[i]).norm() < 1e-9) {
+          r_.Error((*n)[std::min(i + 1, n->size() - 1)], "degenerate-path",
+                   "polyline has two equal consecutive points");
+          return false;
+        }
+        curve.Add(geom::MakeLineSegment(pts[i], pts[i + 1]), "line");
+      }
+      return true;
+    }
+    if (type == "slot") {
+      // Two parallel straights of `length`, `width` apart, joined at each end by a half
+      // ellipse whose semi-axis along the slot is `end_radius` (across: width / 2).
+      r_.CheckKeys(item, {"name", "type", "center", "length", "width", "end_radius", "angle_deg"},
+                   "slot path");
+      auto c = Point2(item, "center", true);
+      auto length = LengthKey(item, "length", true, true);
+      auto width = LengthKey(item, "width", true, true);
+      auto end_r = LengthKey(item, "end_radius", true, true);
+      double angle = 0.0;
+      if (auto v = NumberKey(item, "angle_deg", false)) angle = *v;
+      if (!c || !length || !width || !end_r) return false;
+      const double th = angle * kDeg;
+      const Eigen::Matrix2d rot = Eigen::Rotation2Dd(th).toRotationMatrix();
+      const double hl = *length / 2;
+      const double hw = *width / 2;
+      auto P = [&](double x, double y) -> Eigen::Vector2d {
+        return *c + rot * Eigen::Vector2d(x, y);
+      };
+      // Counter-clockwise: bottom straight (+x), right end, top straight (-x), left end.
+      curve.Add(geom::MakeLineSegment(P(-hl, -hw), P(hl, -hw)), "straight");
+      curve.Add(geom::MakeEllipticArc(P(hl, 0), *end_r, hw, th, -kPi / 2, kPi / 2), "end");
+      curve.Add(geom::MakeLineSegment(P(hl, hw), P(-hl, hw)), "straight");
+      curve.Add(geom::MakeEllipticArc(P(-hl, 0), *end_r, hw, th, kPi / 2, 3 * kPi / 2), "end");
+      return true;
+    }
+    r_.Error(type_node, "bad-value",
+             "path type must be line, arc, circle, polyline or slot, got '" + type + "'");
+    return false;
+  }
+
+  void CheckInDomain(const YAML::Node& item, const PathSpec& p, const geom::Surface& surface) {
+    const geom::Domain2 d = surface.Domain();
+    for (std::size_t s = 0; s < p.curve->SegmentCount(); ++s) {
+      for (int k = 0; k <= 32; ++k) {
+        const Eigen::Vector2d uv = p.curve->Segment(s).At(k / 32.0);
+        if (!d.Contains(uv, 1e-6)) {
+          r_.Error(item, "path-off-surface",
+                   "path '" + p.name + "' leaves the surface domain near (" +
+                       std::to_string(uv.x() / MmPer(unit_)) + ", " +
+                       std::to_string(uv.y() / MmPer(unit_)) + ") " +
+                       std::string(UnitName(unit_)));
+          return;
+        }
+      }
+    }
+  }
+
+  void ReadLimits(const YAML::Node& root, Scene& scene) {
+    auto lim = r_.Child(root, "limits", false);
+    if (!lim || !r_.ExpectMap(*lim, "limits")) return;
+    for (const auto& rule : *lim) {
+      const std::string id = rule.first.Scalar();
+      if (!r_.ExpectMap(rule.second, "limits of " + id)) continue;
+      for (const auto& kv : rule.second) {
+        if (auto v = r_.Number(kv.second, id + "." + kv.first.Scalar())) {
+          scene.limits[id][kv.first.Scalar()] = *v;
+        }
+      }
+    }
+  }
+
+  void ReadRail(const YAML::Node& root, Scene& scene) {
+    auto rail = r_.Child(root, "rail", false);
+    if (!rail || !r_.ExpectMap(*rail, "rail")) return;
+    r_.CheckKeys(*rail, {"offset"}, "rail");
+    if (auto v = LengthKey(*rail, "offset", true, false)) scene.rail_offset_mm = *v;
+  }
+
+  detail::YamlReader r_;
+  DiagnosticSink& sink_;
+  LengthUnit unit_ = LengthUnit::kMillimetre;
+};
+
+}  // namespace
+
+const PathSpec* Scene::FindPath(const std::string& path_name) const {
+  for (const auto& p : paths) {
+    if (p.name == path_name) return &p;
+  }
+  return nullptr;
+}
+
+std::unique_ptr<Scene> LoadScene(const std::filesystem::path& file, DiagnosticSink& sink) {
+  return SceneLoader(file, sink).Load();
+}
+
+}  // namespace stitchsim::scene

@@ -1,0 +1,227 @@
+#include "yaml_reader.h"
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <system_error>
+
+namespace stitchsim::scene::detail {
+namespace {
+
+std::string Trim(std::string_view s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string_view::npos) return {};
+  const auto e = s.find_last_not_of(" \t");
+  return std::string(s.substr(b, e - b + 1));
+}
+
+// Strict decimal: optional sign, digits, optional fraction, optional exponent. No nan/inf.
+std::optional<double> ParseStrictNumber(std::string_view s, bool& not_finite) {
+  not_finite = false;
+  std::string t = Trim(s);
+  if (t.empty()) return std::nullopt;
+  const std::string lower = [&] {
+    std::string l = t;
+    for (auto& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return l;
+  }();
+  if (lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos) {
+    not_finite = true;
+    return std::nullopt;
+  }
+  const char* begin = t.data();
+  if (*begin == '+') ++begin;
+  double v = 0.0;
+  const auto [ptr, ec] = std::from_chars(begin, t.data() + t.size(), v);
+  if (ec == std::errc::result_out_of_range) {
+    not_finite = true;
+    return std::nullopt;
+  }
+  if (ec != std::errc() || ptr != t.data() + t.size()) return std::nullopt;
+  if (!std::isfinite(v)) {
+    not_finite = true;
+    return std::nullopt;
+  }
+  return v;
+}
+
+}  // namespace
+
+std::optional<YAML::Node> YamlReader::LoadFile() {
+  std::error_code ec;
+  if (!std::filesystem::exists(file_, ec)) {
+    sink_.Error(prefix_ + "-missing-file", {file_.string(), 0, 0},
+                "file not found: " + file_.string());
+    return std::nullopt;
+  }
+  try {
+    YAML::Node root = YAML::LoadFile(file_.string());
+    if (!root.IsDefined() || root.IsNull()) {
+      sink_.Error(prefix_ + "-empty", {file_.string(), 1, 1}, "file is empty");
+      return std::nullopt;
+    }
+    return root;
+  } catch (const YAML::Exception& e) {
+    sink_.Error(prefix_ + "-yaml-syntax", {file_.string(), e.mark.line + 1, e.mark.column + 1},
+                "YAML syntax error: " + e.msg);
+    return std::nullopt;
+  }
+}
+
+SourceLocation YamlReader::At(const YAML::Node& node) const {
+  const YAML::Mark m = node.Mark();
+  if (m.is_null()) return {file_.string(), 0, 0};
+  return {file_.string(), m.line + 1, m.column + 1};
+}
+
+void YamlReader::Error(const YAML::Node& node, std::string_view code, std::string message) {
+  sink_.Error(prefix_ + "-" + std::string(code), At(node), std::move(message));
+}
+
+bool YamlReader::ExpectMap(const YAML::Node& node, std::string_view what) {
+  if (node.IsMap()) return true;
+  Error(node, "type", std::string(what) + " must be a mapping (key: value)");
+  return false;
+}
+
+bool YamlReader::CheckKeys(const YAML::Node& map, std::initializer_list<std::string_view> allowed,
+                           std::string_view context) {
+  if (!map.IsMap()) return false;
+  bool ok = true;
+  for (const auto& kv : map) {
+    const std::string key = kv.first.Scalar();
+    bool known = false;
+    for (auto a : allowed) known = known || a == key;
+    if (!known) {
+      std::string list;
+      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      Error(kv.first, "unknown-key",
+            "unknown key '" + key + "' in " + std::string(context) + " (expected one of: " +
+                list + ")");
+      ok = false;
+    }
+  }
+  return ok;
+}
+
+std::optional<YAML::Node> YamlReader::Child(const YAML::Node& map, std::string_view key,
+                                            bool required) {
+  if (map.IsMap()) {
+    for (const auto& kv : map) {
+      if (kv.first.Scalar() == key) return kv.second;
+    }
+  }
+  if (required) {
+    Error(map, "missing-key", "missing required key '" + std::string(key) + "'");
+  }
+  return std::nullopt;
+}
+
+std::optional<double> YamlReader::Number(const YAML::Node& node, std::string_view what) {
+  if (!node.IsScalar()) {
+    Error(node, "type", std::string(what) + " must be a number");
+    return std::nullopt;
+  }
+  bool not_finite = false;
+  auto v = ParseStrictNumber(node.Scalar(), not_finite);
+  if (!v) {
+    Error(node, not_finite ? "not-finite" : "bad-number",
+          std::string(what) + (not_finite ? " must be a finite number, got '"
+                                          : " must be a number, got '") +
+              node.Scalar() + "'");
+  }
+  return v;
+}
+
+std::optional<std::string> YamlReader::String(const YAML::Node& node, std::string_view what) {
+  if (!node.IsScalar()) {
+    Error(node, "type", std::string(what) + " must be a string");
+    return std::nullopt;
+  }
+  return node.Scalar();
+}
+
+std::optional<bool> YamlReader::Bool(const YAML::Node& node, std::string_view what) {
+  if (node.IsScalar()) {
+    const std::string& s = node.Scalar();
+    if (s == "true" || s == "yes") return true;
+    if (s == "false" || s == "no") return false;
+  }
+  Error(node, "type", std::string(what) + " must be true or false");
+  return std::nullopt;
+}
+
+std::optional<double> YamlReader::Length(const YAML::Node& node, LengthUnit unit,
+                                         std::string_view what) {
+  if (!node.IsScalar()) {
+    Error(node, "type", std::string(what) + " must be a length (number or '<n> mm|in|m')");
+    return std::nullopt;
+  }
+  std::string s = Trim(node.Scalar());
+  LengthUnit u = unit;
+  // Optional unit suffix.
+  std::size_t end = s.size();
+  while (end > 0 && std::isalpha(static_cast<unsigned char>(s[end - 1]))) --end;
+  if (end < s.size()) {
+    const std::string suffix = s.substr(end);
+    const std::string lower = [&] {
+      std::string l = suffix;
+      for (auto& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      return l;
+    }();
+    if (lower == "nan" || lower == "inf" || lower.ends_with("nan") || lower.ends_with("inf")) {
+      Error(node, "not-finite", std::string(what) + " must be finite, got '" + s + "'");
+      return std::nullopt;
+    }
+    auto parsed = ParseLengthUnit(suffix);
+    if (!parsed) {
+      Error(node, "bad-unit", std::string(what) + ": unknown unit '" + suffix +
+                                  "' (use mm, in or m)");
+      return std::nullopt;
+    }
+    u = *parsed;
+    s = Trim(s.substr(0, end));
+  }
+  bool not_finite = false;
+  auto v = ParseStrictNumber(s, not_finite);
+  if (!v) {
+    Error(node, not_finite ? "not-finite" : "bad-number",
+          std::string(what) + " must be a finite length, got '" + node.Scalar() + "'");
+    return std::nullopt;
+  }
+  return *v * MmPer(u);
+}
+
+std::optional<Eigen::VectorXd> YamlReader::Vector(const YAML::Node& node, int n,
+                                                  std::string_view what,
+                                                  std::optional<LengthUnit> unit) {
+  if (!node.IsSequence() || static_cast<int>(node.size()) != n) {
+    Error(node, "type", std::string(what) + " must be a list of " + std::to_string(n) +
+                            (unit ? " lengths" : " numbers"));
+    return std::nullopt;
+  }
+  Eigen::VectorXd v(n);
+  bool ok = true;
+  for (int i = 0; i < n; ++i) {
+    auto x = unit ? Length(node[static_cast<std::size_t>(i)], *unit, what)
+                  : Number(node[static_cast<std::size_t>(i)], what);
+    if (!x) {
+      ok = false;
+    } else {
+      v[i] = *x;
+    }
+  }
+  if (!ok) return std::nullopt;
+  return v;
+}
+
+bool YamlReader::Positive(const YAML::Node& node, double value, std::string_view what,
+                          bool allow_zero) {
+  if (value > 0 || (allow_zero && value == 0)) return true;
+  Error(node, "out-of-range",
+        std::string(what) + (allow_zero ? " must not be negative" : " must be positive") +
+            ", got " + std::to_string(value));
+  return false;
+}
+
+}  // namespace stitchsim::scene::detail

@@ -1,0 +1,60 @@
+#pragma once
+// Private helper: typed, validated reads from yaml-cpp nodes that report file:line:col
+// diagnostics instead of throwing.
+
+#include <yaml-cpp/yaml.h>
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "stitchsim/common/diagnostics.h"
+#include "stitchsim/common/units.h"
+
+namespace stitchsim::scene::detail {
+
+class YamlReader {
+ public:
+  YamlReader(std::filesystem::path file, DiagnosticSink& sink, std::string prefix)
+      : file_(std::move(file)), sink_(sink), prefix_(std::move(prefix)) {}
+
+  /// Parses the whole file; reports missing file / syntax errors.
+  std::optional<YAML::Node> LoadFile();
+
+  SourceLocation At(const YAML::Node& node) const;
+  void Error(const YAML::Node& node, std::string_view code, std::string message);
+
+  /// Reports every key of `map` not in `allowed` ("<prefix>-unknown-key").
+  bool CheckKeys(const YAML::Node& map, std::initializer_list<std::string_view> allowed,
+                 std::string_view context);
+  bool ExpectMap(const YAML::Node& node, std::string_view what);
+  /// Child `key` of `map`; reports "<prefix>-missing-key" when required and absent.
+  std::optional<YAML::Node> Child(const YAML::Node& map, std::string_view key, bool required);
+
+  std::optional<double> Number(const YAML::Node& node, std::string_view what);
+  std::optional<std::string> String(const YAML::Node& node, std::string_view what);
+  std::optional<bool> Bool(const YAML::Node& node, std::string_view what);
+  /// A length: a number in `unit`, or a string "<number> mm|in|m". Result in millimetres.
+  std::optional<double> Length(const YAML::Node& node, LengthUnit unit, std::string_view what);
+  /// A sequence of exactly `n` numbers (or lengths when `unit` is given; result in mm).
+  std::optional<Eigen::VectorXd> Vector(const YAML::Node& node, int n, std::string_view what,
+                                        std::optional<LengthUnit> unit = std::nullopt);
+
+  /// Checks value > 0 (or >= 0 when allow_zero); reports "<prefix>-out-of-range".
+  bool Positive(const YAML::Node& node, double value, std::string_view what,
+                bool allow_zero = false);
+
+  const std::filesystem::path& File() const { return file_; }
+  DiagnosticSink& Sink() { return sink_; }
+  const std::string& Prefix() const { return prefix_; }
+
+ private:
+  std::filesystem::path file_;
+  DiagnosticSink& sink_;
+  std::string prefix_;
+};
+
+}  // namespace stitchsim::scene::detail
