@@ -1,0 +1,33 @@
+#pragma once
+// Shared pieces of the stitchsim subcommands: exit codes, diagnostics output, scene loading.
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "stitchsim/common/diagnostics.h"
+#include "stitchsim/scene/scene.h"
+#include "stitchsim/sim/robot_model.h"
+
+namespace stitchsim::app {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFindings = 1;  ///< well-formed input the cell cannot run
+inline constexpr int kExitBadInput = 2;  ///< malformed input, missing file, ...
+
+/// Prints every diagnostic to stderr; returns true if any was an error.
+bool PrintDiagnostics(const DiagnosticSink& sink);
+
+/// Prints "stitchsim: error[code]: message" for a problem that has no file position.
+void PrintError(const std::string& code, const std::string& message);
+
+/// A loaded scene and its robot model.
+struct LoadedScene {
+  std::unique_ptr<scene::Scene> scene;
+  std::unique_ptr<sim::RobotModel> robot;
+};
+
+/// Loads the scene and the cell URDF it names; prints diagnostics; nullopt on any error.
+std::optional<LoadedScene> LoadSceneAndRobot(const std::filesystem::path& scene_file);
+
+}  // namespace stitchsim::app

@@ -1,0 +1,51 @@
+#pragma once
+// The stitchsim subcommands. Each Add*Command registers itself on the CLI11 app and writes
+// its exit code into `exit_code` when it runs.
+
+#include <CLI/CLI.hpp>
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli_common.h"
+#include "stitchsim/sim/kinematics.h"
+
+namespace stitchsim::app {
+
+void AddRenderCommand(CLI::App& app, int& exit_code);
+void AddCheckCommand(CLI::App& app, int& exit_code);
+void AddKinematicsCommands(CLI::App& app, int& exit_code);
+
+/// A reachable pose for the robot to be drawn in (home when IK fails).
+struct StartPose {
+  bool ok = false;
+  std::string reason;
+  sim::JointVector joints = sim::JointVector::Zero();
+  Eigen::Isometry3d tool_world_m = Eigen::Isometry3d::Identity();
+};
+StartPose SolveStartPose(const LoadedScene& ls, const Eigen::Isometry3d& tool_in_part_mm);
+
+struct RenderRequest {
+  std::string output;
+  int width = 1280;
+  int height = 960;
+  std::string view = "overview";
+  std::string coverage_json;  ///< if set, write per-class pixel counts here
+  sim::JointVector joints = sim::JointVector::Zero();
+  Eigen::Isometry3d tool_world_m = Eigen::Isometry3d::Identity();
+  std::vector<Eigen::Vector3d> program_points_part_mm;  ///< stitch points to draw, part frame
+};
+int RunRenderScene(const LoadedScene& ls, const RenderRequest& req);
+
+/// Stitch points of a programme (part frame, mm) for drawing; nullopt on bad input
+/// (diagnostics printed).
+struct ProgramOverlay {
+  std::vector<Eigen::Vector3d> stitch_points_part_mm;
+  std::optional<Eigen::Isometry3d> first_tool_in_part_mm;
+};
+std::optional<ProgramOverlay> ProgramStitchOverlay(const LoadedScene& ls,
+                                                   const std::string& program_file);
+
+}  // namespace stitchsim::app

@@ -1,0 +1,24 @@
+// stitchsim: plan, execute and verify composite stitching / fiber placement programmes on an
+// ISAAC-like cell. Exit codes: 0 success / pass, 1 findings, 2 bad input.
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "stitchsim: kinematic simulator and verification harness for composite-manufacturing "
+      "robots (stitching and fiber-placement heads on a rail-mounted 6-axis arm)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "stitchsim 0.1.0");
+  int exit_code = stitchsim::app::kExitOk;
+  stitchsim::app::AddRenderCommand(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : stitchsim::app::kExitBadInput;
+  }
+  return exit_code;
+}

@@ -1,0 +1,58 @@
+// Stitch points of a programme for drawing: the end point of every line that advances the
+// drive axis, in the part frame.
+#include <fstream>
+
+#include "commands.h"
+#include "stitchsim/geom/rotation.h"
+#include "stitchsim/program/modal_state.h"
+#include "stitchsim/program/reader.h"
+
+namespace stitchsim::app {
+
+std::optional<ProgramOverlay> ProgramStitchOverlay(const LoadedScene& /*ls*/,
+                                                   const std::string& program_file) {
+  std::ifstream in(program_file, std::ios::binary);
+  if (!in) {
+    PrintError("io-missing-file", "cannot open programme " + program_file);
+    return std::nullopt;
+  }
+  const program::Dialect& dialect = program::Dialect::Default();
+  const geom::EulerOrder order =
+      geom::ParseEulerOrder(dialect.euler_order).value_or(geom::EulerOrder{});
+  BoundedDiagnosticSink sink(50);
+  program::ProgramReader reader(in, dialect, program_file, sink);
+  program::ModalState state(dialect, program_file, sink);
+  program::Block block;
+  ProgramOverlay out;
+  while (reader.Next(block)) {
+    const program::Step& step = state.Update(block);
+    if (!step.is_move) continue;
+    const auto& s = state.State();
+    const auto& x = s[program::Axis::kX];
+    const auto& y = s[program::Axis::kY];
+    const auto& z = s[program::Axis::kZ];
+    if (!x || !y || !z) continue;
+    const Eigen::Vector3d p(*x, *y, *z);
+    if (!out.first_tool_in_part_mm) {
+      if (auto abc = state.AnglesRad()) {
+        Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
+        tool.translation() = p;
+        tool.linear() = geom::RotationFromEuler(order, Eigen::Vector3d((*abc)[0], (*abc)[1], (*abc)[2]));
+        out.first_tool_in_part_mm = tool;
+      }
+    }
+    const auto& u_now = s[program::Axis::kDrive];
+    const auto& u_before = state.Previous()[program::Axis::kDrive];
+    if (out.stitch_points_part_mm.empty() || (u_now && (!u_before || *u_now != *u_before))) {
+      out.stitch_points_part_mm.push_back(p);
+    }
+  }
+  if (PrintDiagnostics(sink)) return std::nullopt;
+  if (out.stitch_points_part_mm.empty()) {
+    PrintError("program-empty", program_file + ": the programme has no moves to draw");
+    return std::nullopt;
+  }
+  return out;
+}
+
+}  // namespace stitchsim::app

@@ -1,0 +1,271 @@
+// `stitchsim render`: a PNG of the cell, the part and its paths, the robot at a reachable
+// start pose, rendered headless through OSMesa.
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "stitchsim/common/files.h"
+
+#include "cli_common.h"
+#include "commands.h"
+#include "stitchsim/geom/curve.h"
+#include "stitchsim/geom/rotation.h"
+#include "stitchsim/render/renderer.h"
+#include "stitchsim/render/scene_model.h"
+#include "stitchsim/sim/cell.h"
+
+namespace stitchsim::app {
+namespace {
+
+struct RenderArgs {
+  std::string scene;
+  std::string program;
+  std::string output;
+  int width = 1280;
+  int height = 960;
+  std::string view = "overview";
+  std::string coverage_json;
+};
+
+}  // namespace
+
+StartPose SolveStartPose(const LoadedScene& ls, const Eigen::Isometry3d& tool_in_part_mm) {
+  const sim::CellSetup cell = sim::MakeCellSetup(*ls.robot, *ls.scene);
+  StartPose out;
+  const sim::ToolPoseSolution sol = sim::SolveToolPose(cell, tool_in_part_mm, 0.0, std::nullopt,
+                                                       nullptr);
+  out.ok = sol.ik.status == sim::IkStatus::kOk;
+  out.reason = sol.ik.reason;
+  out.joints = out.ok ? sol.ik.joints : sim::HomeJoints(*ls.robot, sol.rail.rail_m);
+  out.tool_world_m = sol.tool_world_m;
+  return out;
+}
+
+Eigen::Isometry3d PathStartTool(const scene::Scene& scene, const scene::PathSpec& path) {
+  geom::SurfacePath sp(*scene.surface, *path.curve);
+  const geom::PathPoint p0 = sp.AtArcLength(0.0);
+  const geom::PathPoint p1 = sp.AtArcLength(std::min(sp.Length(), 1.0));
+  Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
+  tool.translation() = p0.position;
+  tool.linear() = geom::FrameFromNormalAndDirection(p0.normal, p1.position - p0.position)
+                      .value_or(Eigen::Matrix3d::Identity());
+  return tool;
+}
+
+std::vector<render::Overlay> PathOverlays(const scene::Scene& scene,
+                                          const Eigen::Isometry3d& part_world_m, double radius_m) {
+  std::vector<render::Overlay> out;
+  for (const auto& path : scene.paths) {
+    geom::SurfacePath sp(*scene.surface, *path.curve);
+    render::Overlay o;
+    o.label = "path";
+    o.radius_m = radius_m;
+    const int n = std::clamp(static_cast<int>(sp.Length() / 5.0), 16, 2000);
+    for (int i = 0; i <= n; ++i) {
+      const geom::PathPoint p = sp.AtArcLength(sp.Length() * i / n);
+      // Drawn on top of the preform so it is not hidden inside it.
+      const Eigen::Vector3d top = p.position + (scene.preform_thickness_mm + 0.5) * p.normal;
+      o.points_m.push_back(part_world_m * (top / 1000.0));
+    }
+    out.push_back(std::move(o));
+  }
+  return out;
+}
+
+// Which part of the picture a segmented geom belongs to.
+std::string CoverageClass(const std::string& geom, const std::string& body) {
+  if (geom.rfind("overlay:", 0) == 0) return geom.substr(8);
+  if (geom == render::kMoldGeom) return "mold";
+  if (geom == render::kPreformGeom) return "preform";
+  if (geom.rfind(render::kConstraintGeomPrefix, 0) == 0) return "constraint";
+  if (body == "head") return "head";
+  if (body == "base_link" || body.rfind("link_", 0) == 0) return "robot";
+  if (body == "carriage" || body == "rail") return "rail";
+  if (body == "rotator" || body == "rotator_base") return "rotator";
+  if (body == "table") return "table";
+  return "other";
+}
+
+nlohmann::json CoverageJson(const render::Segmentation& seg, const render::Image& img) {
+  std::map<std::string, long> counts;
+  for (int label : seg.label) {
+    if (label < 0) {
+      ++counts["background"];
+      continue;
+    }
+    const auto i = static_cast<std::size_t>(label);
+    ++counts[CoverageClass(seg.names[i], seg.body_names[i])];
+  }
+  // Colour spread of the picture itself: a blank image has none.
+  double mean = 0, sq = 0;
+  for (auto v : img.rgb) {
+    mean += v;
+    sq += static_cast<double>(v) * v;
+  }
+  const double n = static_cast<double>(img.rgb.size());
+  mean /= n;
+  nlohmann::json j;
+  j["width"] = seg.width;
+  j["height"] = seg.height;
+  j["pixels"] = counts;
+  j["rgb_stddev"] = std::sqrt(std::max(0.0, sq / n - mean * mean));
+  return j;
+}
+
+render::CameraView FrameView(const std::vector<Eigen::Vector3d>& points_m, bool close_up) {
+  Eigen::Vector3d lo = points_m.front(), hi = points_m.front();
+  for (const auto& p : points_m) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  render::CameraView v;
+  v.lookat_m = (lo + hi) / 2;
+  const double radius = std::max(0.5 * (hi - lo).norm(), close_up ? 0.25 : 1.0);
+  v.distance_m = radius / std::tan(20.0 * 3.14159265358979 / 180.0) * (close_up ? 1.1 : 1.25);
+  v.azimuth_deg = close_up ? 35.0 : 35.0;
+  v.elevation_deg = close_up ? -28.0 : -22.0;
+  return v;
+}
+
+int RunRenderScene(const LoadedScene& ls, const RenderRequest& req) {
+  DiagnosticSink sink;
+  render::MjModelPtr model = render::LoadSceneModel(*ls.scene, sink);
+  if (PrintDiagnostics(sink) || !model) return kExitBadInput;
+  render::MjDataPtr data(mj_makeData(model.get()));
+  const auto& q = req.joints;
+  for (int j = 0; j < sim::kNumJoints; ++j) {
+    const int id = mj_name2id(model.get(), mjOBJ_JOINT, std::string(sim::kJointNames[j]).c_str());
+    if (id < 0) {
+      PrintError("model-missing-joint", "MuJoCo model lacks joint " +
+                                            std::string(sim::kJointNames[j]));
+      return kExitBadInput;
+    }
+    data->qpos[model->jnt_qposadr[id]] = q[j];
+  }
+  mj_kinematics(model.get(), data.get());
+  std::string error;
+  auto renderer = render::OffscreenRenderer::Create(model.get(), req.width, req.height, error);
+  if (!renderer) {
+    PrintError("render-context", error);
+    return kExitBadInput;
+  }
+  const int part_body = mj_name2id(model.get(), mjOBJ_BODY, "part");
+  Eigen::Isometry3d part_world = Eigen::Isometry3d::Identity();
+  for (int r = 0; r < 3; ++r) {
+    part_world.translation()[r] = data->xpos[3 * part_body + r];
+    for (int c = 0; c < 3; ++c) part_world.linear()(r, c) = data->xmat[9 * part_body + 3 * r + c];
+  }
+  const bool close_up = req.view == "head";
+  std::vector<render::Overlay> overlays;
+  if (req.program_points_part_mm.empty()) {
+    overlays = PathOverlays(*ls.scene, part_world, close_up ? 0.0015 : 0.006);
+  } else {
+    render::Overlay o;
+    o.label = "stitch";
+    o.polyline = false;
+    o.radius_m = close_up ? 0.0015 : 0.005;
+    for (const auto& p : req.program_points_part_mm) o.points_m.push_back(part_world * (p / 1000.0));
+    overlays.push_back(std::move(o));
+  }
+  std::vector<Eigen::Vector3d> interest;
+  if (close_up) {
+    interest.push_back(req.tool_world_m.translation());
+    interest.push_back(req.tool_world_m.translation() + Eigen::Vector3d(0, 0, 0.6));
+  } else {
+    for (const auto& o : overlays) interest.insert(interest.end(), o.points_m.begin(), o.points_m.end());
+    const int base = mj_name2id(model.get(), mjOBJ_BODY, "base_link");
+    const int l3 = mj_name2id(model.get(), mjOBJ_BODY, "link_3");
+    for (int b : {base, l3}) {
+      interest.emplace_back(data->xpos[3 * b], data->xpos[3 * b + 1], data->xpos[3 * b + 2]);
+    }
+    // A stretch of the rail on either side of the carriage, so it reads as a rail.
+    const Eigen::Vector3d carriage(data->xpos[3 * base], data->xpos[3 * base + 1], 0.0);
+    interest.push_back(carriage - Eigen::Vector3d(1.5, 0, 0));
+    interest.push_back(carriage + Eigen::Vector3d(1.5, 0, 0));
+    interest.emplace_back(part_world.translation());
+  }
+  render::CameraView view = FrameView(interest, close_up);
+  if (close_up) {
+    // Look along the tool y axis (the stitch direction), low, so both needles and the
+    // presser foot show side by side under the head.
+    const Eigen::Vector3d y = req.tool_world_m.linear().col(1);
+    view.lookat_m = req.tool_world_m.translation() + 0.03 * req.tool_world_m.linear().col(2);
+    view.distance_m = 0.38;
+    view.azimuth_deg = std::atan2(y.y(), y.x()) * 180.0 / 3.14159265358979 + 20.0;
+    view.elevation_deg = -12.0;
+  }
+  // Paths and stitches are drawn thick enough to see at the chosen distance.
+  const double min_radius = view.distance_m * (close_up ? 0.0006 : 0.0012);
+  for (auto& o : overlays) o.radius_m = std::max(o.radius_m, min_radius);
+  const render::Image img = renderer->Render(data.get(), view, overlays);
+  if (std::string err = render::WritePng(req.output, img); !err.empty()) {
+    PrintError("io-write", err);
+    return kExitBadInput;
+  }
+  if (!req.coverage_json.empty()) {
+    const render::Segmentation seg = renderer->RenderSegmentation(data.get(), view, overlays);
+    const std::string text = CoverageJson(seg, img).dump(2) + "\n";
+    if (std::string err = WriteFileAtomically(req.coverage_json, text); !err.empty()) {
+      PrintError("io-write", err);
+      return kExitBadInput;
+    }
+  }
+  return kExitOk;
+}
+
+void AddRenderCommand(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "render", "Render the cell, the part and its paths (or a programme's stitches) to a PNG");
+  cmd->add_option("--scene", args->scene, "Scene YAML file")->required();
+  cmd->add_option("--program", args->program, "Draw this programme's stitch points");
+  cmd->add_option("-o,--output", args->output, "Output PNG file")->required();
+  cmd->add_option("--width", args->width, "Image width in pixels")->check(CLI::Range(16, 8192));
+  cmd->add_option("--height", args->height, "Image height in pixels")->check(CLI::Range(16, 8192));
+  cmd->add_option("--coverage-json", args->coverage_json,
+                  "Also write the pixel coverage of robot, head, mold, preform, paths... (JSON)");
+  cmd->add_option("--view", args->view, "overview | head")
+      ->check(CLI::IsMember({"overview", "head"}));
+  cmd->callback([args, &exit_code] {
+    auto ls = LoadSceneAndRobot(args->scene);
+    if (!ls) {
+      exit_code = kExitBadInput;
+      return;
+    }
+    RenderRequest req;
+    req.output = args->output;
+    req.width = args->width;
+    req.height = args->height;
+    req.view = args->view;
+    req.coverage_json = args->coverage_json;
+    Eigen::Isometry3d start_tool = PathStartTool(*ls->scene, ls->scene->paths.front());
+    if (!args->program.empty()) {
+      std::optional<ProgramOverlay> po = ProgramStitchOverlay(*ls, args->program);
+      if (!po) {
+        exit_code = kExitBadInput;
+        return;
+      }
+      req.program_points_part_mm = std::move(po->stitch_points_part_mm);
+      if (po->first_tool_in_part_mm) start_tool = *po->first_tool_in_part_mm;
+    }
+    // Start pose: the approach point, clear above the first stitch along its normal, as a
+    // programme begins; it also keeps the head from hiding the path in the picture.
+    constexpr double kApproachMm = 150.0;
+    Eigen::Isometry3d approach = start_tool;
+    approach.translation() += kApproachMm * start_tool.linear().col(2);
+    const StartPose start = SolveStartPose(*ls, req.view == "head" ? start_tool : approach);
+    if (!start.ok) {
+      std::cerr << "stitchsim: warning: start pose not reachable (" << start.reason
+                << "); drawing the robot at home\n";
+    }
+    req.joints = start.joints;
+    req.tool_world_m = start.tool_world_m;
+    exit_code = RunRenderScene(*ls, req);
+  });
+}
+
+}  // namespace stitchsim::app

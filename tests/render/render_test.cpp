@@ -1,0 +1,120 @@
+// `stitchsim render` on every bundled scene: a real PNG, not blank, with the robot, the
+// head, the mold and the path in view (pixel coverage from a segmentation render of the
+// same view).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "stitchsim/render/renderer.h"
+#include "stitchsim/render/scene_model.h"
+#include "stitchsim/scene/scene.h"
+
+namespace stitchsim::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kSource = STITCHSIM_SOURCE_DIR;
+const fs::path kBinary = fs::path(STITCHSIM_BINARY_DIR) / "app" / "stitchsim";
+
+int RunCli(const std::string& args) {
+  const std::string cmd = kBinary.string() + " " + args + " >/dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+class RenderEveryScene : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(RenderEveryScene, PngShowsRobotHeadMoldAndPath) {
+  const std::string name = GetParam();
+  const fs::path out = fs::temp_directory_path() / ("stitchsim_render_" + name);
+  fs::create_directories(out);
+  const fs::path png = out / "overview.png";
+  const fs::path cov = out / "coverage.json";
+  fs::remove(png);
+  ASSERT_EQ(RunCli("render --scene " + (kSource / "scenes" / (name + ".yaml")).string() + " -o " +
+                png.string() + " --width 800 --height 600 --coverage-json " + cov.string()),
+            0);
+  Image img;
+  std::string err;
+  ASSERT_TRUE(ReadPng(png, img, err)) << err;
+  EXPECT_EQ(img.width, 800);
+  EXPECT_EQ(img.height, 600);
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(cov));
+  EXPECT_GT(j["rgb_stddev"].get<double>(), 10.0) << "blank image";
+  const auto& px = j["pixels"];
+  auto count = [&](const char* k) { return px.contains(k) ? px[k].get<long>() : 0L; };
+  const long total = 800L * 600L;
+  EXPECT_GT(count("robot"), total / 50) << j.dump();
+  EXPECT_GT(count("head"), 300) << j.dump();
+  EXPECT_GT(count("mold") + count("preform"), 500) << j.dump();
+  EXPECT_GT(count("path"), 5) << j.dump();
+  EXPECT_GT(count("rail"), total / 50) << j.dump();
+  EXPECT_LT(count("background"), total / 2) << j.dump();
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, RenderEveryScene,
+                         ::testing::Values("flat_straight", "circle_8in", "cutout_slot",
+                                           "cylinder_r90_frame", "arcs_planar", "blade_demo"));
+
+TEST(Render, HeadViewIsAClosePicture) {
+  const fs::path png = fs::temp_directory_path() / "stitchsim_render_head.png";
+  const fs::path cov = fs::temp_directory_path() / "stitchsim_render_head.json";
+  ASSERT_EQ(RunCli("render --scene " + (kSource / "scenes/circle_8in.yaml").string() +
+                " --view head -o " + png.string() + " --width 640 --height 480 --coverage-json " +
+                cov.string()),
+            0);
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(cov));
+  EXPECT_GT(j["pixels"]["head"].get<long>(), 640L * 480L / 20) << j.dump();
+}
+
+TEST(Render, BadInputExitsTwoAndWritesNothing) {
+  const fs::path png = fs::temp_directory_path() / "stitchsim_render_bad.png";
+  fs::remove(png);
+  EXPECT_EQ(RunCli("render --scene /nonexistent.yaml -o " + png.string()), 2);
+  EXPECT_EQ(RunCli("render --scene " + (kSource / "scenes/circle_8in.yaml").string() + " -o " +
+                png.string() + " --width 0"),
+            2);
+  EXPECT_EQ(RunCli("render --scene " + (kSource / "scenes/circle_8in.yaml").string() + " -o " +
+                png.string() + " --view sideways"),
+            2);
+  EXPECT_FALSE(fs::exists(png));
+}
+
+TEST(SceneModel, ComposedModelCompilesForEveryHead) {
+  for (const char* head : {"rs535", "rs566", "afp"}) {
+    const fs::path p = fs::temp_directory_path() / (std::string("stitchsim_head_") + head + ".yaml");
+    std::ofstream(p) << "stitchsim_scene: 1\nname: h\nunits: mm\nhead: " << head
+                     << "\npart: {mount: rotator}\nsurface: {type: plane, size: [500, 500]}\n"
+                        "paths: [{name: a, type: line, from: [0, 0], to: [100, 0]}]\n";
+    DiagnosticSink sink;
+    auto scene = scene::LoadScene(p, sink);
+    ASSERT_NE(scene, nullptr);
+    MjModelPtr m = LoadSceneModel(*scene, sink);
+    for (const auto& d : sink.Diagnostics()) ADD_FAILURE() << FormatDiagnostic(d);
+    ASSERT_NE(m, nullptr);
+    // The head's tool_point site equals the head spec's tool frame (flange frame).
+    const int site = mj_name2id(m.get(), mjOBJ_SITE, "tool_point");
+    ASSERT_GE(site, 0);
+    const Eigen::Vector3d pos(m->site_pos[3 * site], m->site_pos[3 * site + 1],
+                              m->site_pos[3 * site + 2]);
+    const Eigen::Quaterniond q(m->site_quat[4 * site], m->site_quat[4 * site + 1],
+                               m->site_quat[4 * site + 2], m->site_quat[4 * site + 3]);
+    EXPECT_LT((pos - scene->head.flange_to_tool_m.translation()).norm(), 1e-9) << head;
+    EXPECT_LT(Eigen::AngleAxisd(q.toRotationMatrix().transpose() *
+                                scene->head.flange_to_tool_m.linear())
+                  .angle(),
+              1e-9)
+        << head;
+    // The part rides on the rotator body.
+    const int part = mj_name2id(m.get(), mjOBJ_BODY, "part");
+    ASSERT_GE(part, 0);
+    EXPECT_EQ(std::string(mj_id2name(m.get(), mjOBJ_BODY, m->body_parentid[part])), "rotator");
+  }
+}
+
+}  // namespace
+}  // namespace stitchsim::render
