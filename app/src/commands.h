@@ -16,6 +16,7 @@ namespace stitchsim::app {
 
 void AddRenderCommand(CLI::App& app, int& exit_code);
 void AddCheckCommand(CLI::App& app, int& exit_code);
+void AddPlanCommand(CLI::App& app, int& exit_code);
 void AddKinematicsCommands(CLI::App& app, int& exit_code);
 
 /// A reachable pose for the robot to be drawn in (home when IK fails).

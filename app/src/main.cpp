@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "stitchsim 0.1.0");
   int exit_code = stitchsim::app::kExitOk;
   stitchsim::app::AddRenderCommand(app, exit_code);
+  stitchsim::app::AddPlanCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

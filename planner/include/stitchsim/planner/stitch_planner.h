@@ -1,0 +1,113 @@
+#pragma once
+// The 3D stitch-path planner (seed 000 section 3.2.2): stitch count, equal-arc-length stitch
+// points on the surface, tool frames (z = surface normal at the stitch start, y = chord),
+// and the coupled / decoupled / auto programme. Streams: a million stitches never sit in
+// memory at once.
+
+#include <Eigen/Geometry>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stitchsim/common/diagnostics.h"
+#include "stitchsim/geom/curve.h"
+#include "stitchsim/process/stitch_cycle.h"
+#include "stitchsim/program/dialect.h"
+#include "stitchsim/scene/scene.h"
+
+namespace stitchsim::planner {
+
+enum class Mode { kCoupled, kDecoupled, kAuto };
+std::optional<Mode> ParseMode(std::string_view text);
+std::string_view ToString(Mode mode);
+
+struct StitchPlanOptions {
+  Mode mode = Mode::kAuto;
+  std::optional<double> nominal_stitch_length_mm;  ///< default: the scene's
+};
+
+/// One stitch as planned. Poses are tool-point poses in the part frame (translation mm).
+struct PlannedStitch {
+  int index = 0;                        ///< 1-based
+  Eigen::Isometry3d start;              ///< frame of this stitch at its start point
+  Eigen::Isometry3d end;                ///< frame of the next stitch at this stitch's end point
+  double arc_length_end_mm = 0.0;       ///< = index * stitch length
+  std::string segment_label;            ///< 2D segment the stitch's chord midpoint is on
+  bool decoupled = false;               ///< translation then rotation (two lines)
+  /// What a coupled line would do to the needles (the auto-mode decision input), always
+  /// computed: side force per needle, rotation in the preform.
+  process::WindowMetrics coupled;
+  std::string exceeded_limit;           ///< rule the coupled stitch would break; empty if none
+  double rotation_rad = 0.0;            ///< head rotation from start to end frame
+};
+
+/// Time estimate (seconds), from the head spec: feed from the stitch rate, rotation lines at
+/// the head's rotation speed plus a settle time.
+struct CycleTime {
+  double stitching_s = 0.0;  ///< translation (needles working) time
+  double rotation_s = 0.0;   ///< pure rotation lines, settle included
+  double Total() const { return stitching_s + rotation_s; }
+};
+
+/// Streams the stitches of one path.
+class StitchPathPlanner {
+ public:
+  /// Validates and sizes the plan; diagnostics ("plan-...") for a path shorter than one
+  /// stitch, a bad stitch length, a degenerate frame.
+  static std::optional<StitchPathPlanner> Create(const scene::Scene& scene,
+                                                 const scene::PathSpec& path,
+                                                 const StitchPlanOptions& options,
+                                                 DiagnosticSink& sink);
+
+  int StitchCount() const { return count_; }
+  double StitchLengthMm() const { return stitch_length_mm_; }
+  double PathLengthMm() const { return path_.Length(); }
+  bool Closed() const { return path_.Closed(); }
+  Mode GetMode() const { return mode_; }
+  const process::ProcessModel& Process() const { return process_; }
+  /// Tool pose at the path start (frame of stitch 1).
+  const Eigen::Isometry3d& StartPose() const { return start_pose_; }
+  /// The next stitch; false after the last one.
+  bool Next(PlannedStitch& out);
+
+ private:
+  StitchPathPlanner(const scene::Scene& scene, const scene::PathSpec& path);
+  Eigen::Isometry3d FrameAt(const geom::PathPoint& at, const geom::PathPoint& next) const;
+  Eigen::Isometry3d EndFrame() const;
+
+  const scene::Scene* scene_;
+  const scene::PathSpec* spec_;
+  geom::SurfacePath path_;
+  process::ProcessModel process_;
+  process::NeedleLimits limits_;
+  Mode mode_ = Mode::kAuto;
+  int count_ = 0;
+  double stitch_length_mm_ = 0.0;
+  int next_index_ = 1;
+  geom::PathPoint current_;    // stitch start point
+  geom::PathPoint following_;  // its end point
+  Eigen::Isometry3d current_frame_;
+  Eigen::Isometry3d start_pose_;
+};
+
+/// What WriteStitchProgram wrote.
+struct ProgramSummary {
+  int stitches = 0;
+  int decoupled = 0;
+  double stitch_length_mm = 0.0;
+  double path_length_mm = 0.0;
+  long motion_lines = 0;
+  CycleTime time;
+  Mode mode = Mode::kAuto;
+};
+
+/// Writes the programme of one planned path (mm, G90) through the dialect's writer.
+ProgramSummary WriteStitchProgram(StitchPathPlanner& planner, const scene::Scene& scene,
+                                  const std::string& path_name, const program::Dialect& dialect,
+                                  std::ostream& out);
+
+/// All stitches of a path in memory (tests, small paths).
+std::vector<PlannedStitch> CollectStitches(StitchPathPlanner& planner);
+
+}  // namespace stitchsim::planner

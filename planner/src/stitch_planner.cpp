@@ -1,0 +1,286 @@
+#include "stitchsim/planner/stitch_planner.h"
+
+#include <cmath>
+#include <ostream>
+
+#include "stitchsim/geom/rotation.h"
+#include "stitchsim/program/block.h"
+#include "stitchsim/program/writer.h"
+
+namespace stitchsim::planner {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+}  // namespace
+
+std::optional<Mode> ParseMode(std::string_view text) {
+  if (text == "coupled") return Mode::kCoupled;
+  if (text == "decoupled") return Mode::kDecoupled;
+  if (text == "auto") return Mode::kAuto;
+  return std::nullopt;
+}
+
+std::string_view ToString(Mode mode) {
+  switch (mode) {
+    case Mode::kCoupled:
+      return "coupled";
+    case Mode::kDecoupled:
+      return "decoupled";
+    case Mode::kAuto:
+      return "auto";
+  }
+  return "auto";
+}
+
+StitchPathPlanner::StitchPathPlanner(const scene::Scene& scene, const scene::PathSpec& path)
+    : scene_(&scene), spec_(&path), path_(*scene.surface, *path.curve) {}
+
+std::optional<StitchPathPlanner> StitchPathPlanner::Create(const scene::Scene& scene,
+                                                           const scene::PathSpec& path,
+                                                           const StitchPlanOptions& options,
+                                                           DiagnosticSink& sink) {
+  StitchPathPlanner p(scene, path);
+  const double nominal = options.nominal_stitch_length_mm.value_or(scene.nominal_stitch_length_mm);
+  if (!(nominal > 0.0) || !std::isfinite(nominal)) {
+    sink.Error("plan-bad-stitch-length", path.where,
+               "nominal stitch length must be a positive finite number");
+    return std::nullopt;
+  }
+  const auto n = geom::StitchCount(p.path_.Length(), nominal);
+  if (!n) {
+    sink.Error("plan-path-too-short", path.where,
+               "path '" + path.name + "' is " + std::to_string(p.path_.Length()) +
+                   " mm long, shorter than one stitch of " + std::to_string(nominal) + " mm");
+    return std::nullopt;
+  }
+  p.mode_ = options.mode;
+  p.count_ = *n;
+  p.stitch_length_mm_ = p.path_.Length() / *n;
+  p.process_ = process::MakeProcessModel(scene, p.stitch_length_mm_);
+  p.limits_ = process::NeedleLimitsFrom(scene.limits);
+  p.current_ = p.path_.AtArcLength(0.0);
+  p.following_ = p.path_.AtArcLength(p.stitch_length_mm_);
+  p.current_frame_ = p.FrameAt(p.current_, p.following_);
+  if (!p.current_frame_.matrix().allFinite()) {
+    sink.Error("plan-degenerate-frame", path.where,
+               "path '" + path.name + "': the first stitch runs along the surface normal");
+    return std::nullopt;
+  }
+  p.start_pose_ = p.current_frame_;
+  return p;
+}
+
+Eigen::Isometry3d StitchPathPlanner::FrameAt(const geom::PathPoint& at,
+                                             const geom::PathPoint& next) const {
+  Eigen::Isometry3d f = Eigen::Isometry3d::Identity();
+  f.translation() = at.position;
+  const auto r = geom::FrameFromNormalAndDirection(at.normal, next.position - at.position);
+  if (!r) {
+    f.matrix().setConstant(std::nan(""));
+    return f;
+  }
+  f.linear() = *r;
+  return f;
+}
+
+Eigen::Isometry3d StitchPathPlanner::EndFrame() const {
+  // After the last stitch: a closed path turns back to its first frame. An open one takes
+  // the frame the next stitch would have if the path went on (its last segment extended by
+  // one stitch), so the last stitch is judged like the ones before it.
+  if (path_.Closed()) {
+    Eigen::Isometry3d f = start_pose_;
+    f.translation() = following_.position;
+    return f;
+  }
+  const std::size_t last = spec_->curve->SegmentCount() - 1;
+  const geom::CurveSegment& seg = spec_->curve->Segment(last);
+  const geom::Surface& surface = *scene_->surface;
+  const double speed = (surface.Jacobian(seg.At(1.0)) * seg.Derivative(1.0)).norm();
+  geom::PathPoint virtual_next = following_;
+  if (speed > 0) {
+    const Eigen::Vector2d uv = seg.At(1.0 + stitch_length_mm_ / speed);
+    virtual_next.uv = uv;
+    virtual_next.position = surface.Point(uv);
+  }
+  Eigen::Isometry3d f = FrameAt(following_, virtual_next);
+  if (!f.matrix().allFinite()) {
+    f = current_frame_;
+    f.translation() = following_.position;
+  }
+  return f;
+}
+
+bool StitchPathPlanner::Next(PlannedStitch& out) {
+  if (next_index_ > count_) return false;
+  const int i = next_index_++;
+  out.index = i;
+  out.start = current_frame_;
+  out.arc_length_end_mm = i * stitch_length_mm_;
+  // Frame of the next stitch at this stitch's end point.
+  geom::PathPoint after;
+  Eigen::Isometry3d end_frame;
+  if (i < count_) {
+    after = path_.AtArcLength(std::min((i + 1) * stitch_length_mm_, path_.Length()));
+    end_frame = FrameAt(following_, after);
+    if (!end_frame.matrix().allFinite()) end_frame = EndFrame();
+  } else {
+    end_frame = EndFrame();
+  }
+  if (i == count_ && path_.Closed()) end_frame.translation() = start_pose_.translation();
+  out.end = end_frame;
+  const geom::PathPoint mid = path_.AtArcLength((i - 0.5) * stitch_length_mm_);
+  out.segment_label = spec_->curve->Label(mid.segment);
+  out.coupled = process::EvaluateCoupledStitch(process_, out.start, out.end);
+  out.exceeded_limit = process::FirstExceededLimit(out.coupled, limits_);
+  out.rotation_rad = geom::AngleBetween(out.start.linear(), out.end.linear());
+  switch (mode_) {
+    case Mode::kCoupled:
+      out.decoupled = false;
+      break;
+    case Mode::kDecoupled:
+      out.decoupled = true;
+      break;
+    case Mode::kAuto:
+      out.decoupled = !out.exceeded_limit.empty();
+      break;
+  }
+  current_ = following_;
+  current_frame_ = end_frame;
+  if (i < count_) following_ = after;
+  return true;
+}
+
+std::vector<PlannedStitch> CollectStitches(StitchPathPlanner& planner) {
+  std::vector<PlannedStitch> out;
+  out.reserve(static_cast<std::size_t>(planner.StitchCount()));
+  PlannedStitch s;
+  while (planner.Next(s)) out.push_back(s);
+  return out;
+}
+
+ProgramSummary WriteStitchProgram(StitchPathPlanner& planner, const scene::Scene& scene,
+                                  const std::string& path_name, const program::Dialect& dialect,
+                                  std::ostream& out) {
+  using program::Axis;
+  const geom::EulerOrder order =
+      geom::ParseEulerOrder(dialect.euler_order).value_or(geom::EulerOrder{});
+  const auto& st = scene.head.stitch;
+  const double l = planner.StitchLengthMm();
+  const double feed_mm_min = st.stitch_rate_per_min * l;
+  const double stitch_time_s = 60.0 / st.stitch_rate_per_min;
+  const double rot_speed_rad_s = st.rotation_speed_deg_s / kRadToDeg;
+
+  ProgramSummary summary;
+  summary.mode = planner.GetMode();
+  summary.stitch_length_mm = l;
+  summary.path_length_mm = planner.PathLengthMm();
+
+  program::ProgramWriter w(out, dialect);
+  w.WriteMark();
+  program::ProgramHeader header;
+  auto num = [](double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%.6f", v);
+    return std::string(buf);
+  };
+  header.entries = {{"scene", scene.name},
+                    {"head", scene.head.name},
+                    {"path", path_name},
+                    {"mode", std::string(ToString(planner.GetMode()))},
+                    {"stitch_length_mm", num(l)},
+                    {"stitches", std::to_string(planner.StitchCount())}};
+  w.WriteHeader(header);
+
+  program::Block b;
+  Eigen::Vector3d angles_deg = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angles_rad = Eigen::Vector3d::Zero();
+  bool have_angles = false;
+  auto set_pose = [&](program::Block& blk, const Eigen::Isometry3d& pose) {
+    const Eigen::Vector3d e = geom::EulerFromRotation(order, pose.linear(),
+                                                      have_angles ? &angles_rad : nullptr);
+    angles_rad = e;
+    angles_deg = e * kRadToDeg;
+    have_angles = true;
+    blk[Axis::kX] = pose.translation().x();
+    blk[Axis::kY] = pose.translation().y();
+    blk[Axis::kZ] = pose.translation().z();
+    blk[Axis::kA] = angles_deg.x();
+    blk[Axis::kB] = angles_deg.y();
+    blk[Axis::kC] = angles_deg.z();
+  };
+  // Set-up: units, absolute, head.
+  b.Clear();
+  b.units = LengthUnit::kMillimetre;
+  b.absolute = true;
+  w.Write(b);
+  b.Clear();
+  b.tool = scene.head.tool_number;
+  b.m_codes = {dialect.m.tool_change};
+  w.Write(b);
+  // Start line: the first stitch's pose, both cumulative axes at zero.
+  b.Clear();
+  b.motion = program::Motion::kRapid;
+  set_pose(b, planner.StartPose());
+  b[Axis::kDrive] = 0.0;
+  b[Axis::kPathLength] = 0.0;
+  b.comment = "start";
+  w.Write(b);
+  ++summary.motion_lines;
+  b.Clear();
+  b.m_codes = {dialect.m.stitch_on};
+  w.Write(b);
+
+  PlannedStitch s;
+  bool feed_written = false;
+  while (planner.Next(s)) {
+    ++summary.stitches;
+    const double uv = s.index * l;
+    if (s.decoupled) {
+      ++summary.decoupled;
+      // Line 1: pure translation to the stitch end, orientation kept; the whole stitch
+      // cycle happens here.
+      b.Clear();
+      b.motion = program::Motion::kFeed;
+      Eigen::Isometry3d translate = s.start;
+      translate.translation() = s.end.translation();
+      set_pose(b, translate);
+      b[Axis::kDrive] = uv;
+      b[Axis::kPathLength] = uv;
+      if (!feed_written) b.feed = feed_mm_min;
+      feed_written = true;
+      w.Write(b);
+      // Line 2: pure rotation to the next stitch's frame, drive unchanged (needles out).
+      b.Clear();
+      set_pose(b, s.end);
+      b[Axis::kDrive] = uv;
+      b[Axis::kPathLength] = uv;
+      w.Write(b);
+      summary.motion_lines += 2;
+      summary.time.stitching_s += stitch_time_s;
+      summary.time.rotation_s += s.rotation_rad / rot_speed_rad_s + st.settle_time_s;
+    } else {
+      b.Clear();
+      b.motion = program::Motion::kFeed;
+      set_pose(b, s.end);
+      b[Axis::kDrive] = uv;
+      b[Axis::kPathLength] = uv;
+      if (!feed_written) b.feed = feed_mm_min;
+      feed_written = true;
+      w.Write(b);
+      ++summary.motion_lines;
+      summary.time.stitching_s += std::max(stitch_time_s, s.rotation_rad / rot_speed_rad_s);
+    }
+  }
+  b.Clear();
+  b.m_codes = {dialect.m.stitch_off};
+  w.Write(b);
+  b.Clear();
+  b.m_codes = {dialect.m.program_end};
+  w.Write(b);
+  w.WriteMark();
+  w.Flush();
+  return summary;
+}
+
+}  // namespace stitchsim::planner
