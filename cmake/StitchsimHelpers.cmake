@@ -26,5 +26,5 @@ function(stitchsim_add_test name)
   target_compile_definitions(${name} PRIVATE
     STITCHSIM_SOURCE_DIR="${STITCHSIM_SOURCE_DIR}"
     STITCHSIM_BINARY_DIR="${CMAKE_BINARY_DIR}")
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+  gtest_discover_tests(${name} TEST_PREFIX "${name}." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
 endfunction()

@@ -1,0 +1,62 @@
+#pragma once
+// Streaming parser: one line at a time from an istream, with a fixed-size read buffer, so
+// memory does not grow with file length. Bad input becomes "gcode-*" diagnostics.
+
+#include <cstdint>
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "stitchsim/common/diagnostics.h"
+#include "stitchsim/program/block.h"
+#include "stitchsim/program/dialect.h"
+
+namespace stitchsim::program {
+
+/// Key/values of "(STITCHSIM key=value ...)" comment lines before the first word block,
+/// e.g. scene, head, stitch_length_mm, mode. Values are text; callers convert them.
+struct ProgramHeader {
+  std::vector<std::pair<std::string, std::string>> entries;  // in written order
+
+  /// The value for `key`, or nullopt.
+  std::optional<std::string_view> Find(std::string_view key) const;
+  bool empty() const { return entries.empty(); }
+  friend bool operator==(const ProgramHeader&, const ProgramHeader&) = default;
+};
+
+/// Reads blocks from a stream. Lines with an error are reported and skipped; blank lines and
+/// '%' marks are not returned. `dialect` and `sink` must outlive the reader.
+class ProgramReader {
+ public:
+  ProgramReader(std::istream& in, const Dialect& dialect, std::string file_name,
+                DiagnosticSink& sink);
+  ~ProgramReader();
+  ProgramReader(const ProgramReader&) = delete;
+  ProgramReader& operator=(const ProgramReader&) = delete;
+
+  /// Fills `block` (reusing its buffers) with the next block; false at end of input, after
+  /// the end-of-file checks (missing closing '%', empty programme) have been reported.
+  bool Next(Block& block);
+
+  /// Header entries seen so far (complete once the first word block has been returned).
+  const ProgramHeader& Header() const;
+  /// Lines read so far (1-based number of the last line read).
+  int LineCount() const;
+  /// Bytes consumed from the stream so far.
+  std::uint64_t BytesRead() const;
+  const std::string& FileName() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Parses a whole text (tests, small inputs). Optionally returns the header.
+std::vector<Block> ParseString(std::string_view text, const Dialect& dialect, std::string file_name,
+                               DiagnosticSink& sink, ProgramHeader* header = nullptr);
+
+}  // namespace stitchsim::program

@@ -1,0 +1,79 @@
+#include "stitchsim/sim/cell.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace stitchsim::sim {
+namespace {
+
+constexpr double kHalfPi = 1.5707963267948966;
+
+Eigen::Isometry3d MmToM(const Eigen::Isometry3d& pose_mm) {
+  Eigen::Isometry3d out = pose_mm;
+  out.translation() /= 1000.0;
+  return out;
+}
+
+}  // namespace
+
+CellSetup MakeCellSetup(const RobotModel& robot, const scene::Scene& scene) {
+  CellSetup cell;
+  cell.robot = &robot;
+  cell.flange_to_tool_m = scene.head.flange_to_tool_m;
+  cell.mount = scene.mount;
+  cell.mount_to_part_m = scene.mount_to_part_m;
+  cell.rail_offset_m = scene.rail_offset_mm / 1000.0;
+  cell.ik.reference = HomeJoints(robot, 0.0);
+  if (auto it = scene.limits.find("kin.singularity"); it != scene.limits.end()) {
+    if (auto k = it->second.find("a5_min_deg"); k != it->second.end()) {
+      cell.ik.wrist_singularity_rad = k->second * 3.14159265358979323846 / 180.0;
+    }
+  }
+  return cell;
+}
+
+Eigen::Isometry3d PartPoseWorld(const CellSetup& cell, double rotator_rad) {
+  if (cell.mount == scene::Mount::kRotator) {
+    return RotatorCarriedPose(*cell.robot, rotator_rad, cell.mount_to_part_m);
+  }
+  const int table = cell.robot->LinkIndex("table");
+  return LinkPose(*cell.robot, JointVector::Zero(), table) * cell.mount_to_part_m;
+}
+
+JointVector HomeJoints(const RobotModel& robot, double rail_m) {
+  JointVector q = JointVector::Zero();
+  q[kRailX] = std::clamp(rail_m, robot.lower_limits()[kRailX], robot.upper_limits()[kRailX]);
+  q[kA2] = -kHalfPi;
+  q[kA3] = kHalfPi;
+  q[kA5] = kHalfPi;
+  return q;
+}
+
+ToolPoseSolution SolveToolPose(const CellSetup& cell, const Eigen::Isometry3d& tool_in_part_mm,
+                               double rotator_rad, std::optional<double> programmed_rail_mm,
+                               const JointVector* previous) {
+  ToolPoseSolution out;
+  out.tool_world_m = PartPoseWorld(cell, rotator_rad) * MmToM(tool_in_part_mm);
+  RailPolicy policy;
+  policy.base_offset_along_rail_m = cell.rail_offset_m;
+  if (programmed_rail_mm) policy.programmed_rail_m = *programmed_rail_mm / 1000.0;
+  out.rail = RailForTarget(*cell.robot, out.tool_world_m, policy);
+  const Eigen::Isometry3d flange = FlangeTargetForTool(out.tool_world_m, cell.flange_to_tool_m);
+  JointVector seed = previous != nullptr ? *previous : HomeJoints(*cell.robot, out.rail.rail_m);
+  seed[kRotator] = rotator_rad;
+  IkOptions options = cell.ik;
+  options.reference = seed;
+  out.ik = SolveIk(*cell.robot, flange, out.rail.rail_m, previous != nullptr ? &seed : nullptr,
+                   options);
+  out.ik.joints[kRotator] = rotator_rad;
+  return out;
+}
+
+Eigen::Isometry3d ToolPoseInPart(const CellSetup& cell, const JointVector& q) {
+  Eigen::Isometry3d tool = PartPoseWorld(cell, q[kRotator]).inverse() *
+                           FlangePose(*cell.robot, q) * cell.flange_to_tool_m;
+  tool.translation() *= 1000.0;
+  return tool;
+}
+
+}  // namespace stitchsim::sim

@@ -1,0 +1,6 @@
+; expect 2:25
+(STITCHSIM scene=circle head)
+%
+G21 G90
+M30
+%

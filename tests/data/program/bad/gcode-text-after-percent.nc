@@ -1,0 +1,5 @@
+; expect 2:3
+% program 1
+G21 G90
+M30
+%

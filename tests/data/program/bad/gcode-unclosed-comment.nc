@@ -1,0 +1,5 @@
+; expect 3:9
+%
+G21 G90 (metric
+M30
+%

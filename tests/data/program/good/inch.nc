@@ -1,0 +1,11 @@
+%
+(STITCHSIM scene=panel_90in head=rs535 stitch_length_mm=5.000000 mode=coupled)
+G20 G90
+T1 M6
+G0 X0 Y0 Z0 A0 B0 C0 U0 V0
+M10
+G1 X0.19685 U0.19685 V0.19685 F118.11
+G1 X0.3937 U0.3937 V0.3937
+M11
+M30
+%

@@ -1,0 +1,17 @@
+%
+(STITCHSIM scene=wing_cover head=rs535 stitch_length_mm=3.175 mode=decoupled heads=2)
+G21 G90
+M60 P1
+T1 M6
+G0 X0 Y0 Z0 A0 B0 C0 U0 V0
+M10
+G1 X3.175 U3.175 V3.175 F2000
+M11
+M60 P2
+T2 M6
+G0 X1000 Y0 Z0 U0 V0
+M10
+G1 X1003.175 U3.175 V3.175
+M11
+M30
+%

@@ -1,0 +1,5 @@
+%
+N1 G21 G90 G0 T1 M6 X0 Y0 Z0 A0 B0 C0 U0 V0 E0 W0 (everything at once)
+N2 G1 M10 X5 U5 V5 F3000
+N3 M11 M30
+%
