@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <Eigen/Geometry>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@ namespace stitchsim::app {
 void AddRenderCommand(CLI::App& app, int& exit_code);
 void AddCheckCommand(CLI::App& app, int& exit_code);
 void AddPlanCommand(CLI::App& app, int& exit_code);
+void AddVerifyCommand(CLI::App& app, int& exit_code);
 void AddKinematicsCommands(CLI::App& app, int& exit_code);
 
 /// A reachable pose for the robot to be drawn in (home when IK fails).
@@ -27,6 +29,8 @@ struct StartPose {
   Eigen::Isometry3d tool_world_m = Eigen::Isometry3d::Identity();
 };
 StartPose SolveStartPose(const LoadedScene& ls, const Eigen::Isometry3d& tool_in_part_mm);
+/// Tool pose (part frame, mm) at the start of a scene path: z = normal, y = along the path.
+Eigen::Isometry3d PathStartTool(const scene::Scene& scene, const scene::PathSpec& path);
 
 struct RenderRequest {
   std::string output;
@@ -36,7 +40,14 @@ struct RenderRequest {
   std::string coverage_json;  ///< if set, write per-class pixel counts here
   sim::JointVector joints = sim::JointVector::Zero();
   Eigen::Isometry3d tool_world_m = Eigen::Isometry3d::Identity();
-  std::vector<Eigen::Vector3d> program_points_part_mm;  ///< stitch points to draw, part frame
+  /// Points to draw instead of the scene's paths (stitches), part frame, mm.
+  struct PointSet {
+    std::string label;  ///< coverage class, e.g. "stitch"
+    std::vector<Eigen::Vector3d> points_part_mm;
+    std::array<float, 4> rgba = {0.1f, 0.9f, 0.2f, 1.0f};
+    double radius_scale = 1.0;
+  };
+  std::vector<PointSet> point_sets;
 };
 int RunRenderScene(const LoadedScene& ls, const RenderRequest& req);
 

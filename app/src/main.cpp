@@ -15,6 +15,9 @@ int main(int argc, char** argv) {
   int exit_code = stitchsim::app::kExitOk;
   stitchsim::app::AddRenderCommand(app, exit_code);
   stitchsim::app::AddPlanCommand(app, exit_code);
+  stitchsim::app::AddCheckCommand(app, exit_code);
+  stitchsim::app::AddKinematicsCommands(app, exit_code);
+  stitchsim::app::AddVerifyCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

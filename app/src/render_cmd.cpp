@@ -161,15 +161,19 @@ int RunRenderScene(const LoadedScene& ls, const RenderRequest& req) {
   }
   const bool close_up = req.view == "head";
   std::vector<render::Overlay> overlays;
-  if (req.program_points_part_mm.empty()) {
+  if (req.point_sets.empty()) {
     overlays = PathOverlays(*ls.scene, part_world, close_up ? 0.0015 : 0.006);
-  } else {
+  }
+  std::vector<double> radius_scale(overlays.size(), 1.0);
+  for (const auto& set : req.point_sets) {
     render::Overlay o;
-    o.label = "stitch";
+    o.label = set.label;
     o.polyline = false;
     o.radius_m = close_up ? 0.0015 : 0.005;
-    for (const auto& p : req.program_points_part_mm) o.points_m.push_back(part_world * (p / 1000.0));
+    for (int i = 0; i < 4; ++i) o.rgba[i] = set.rgba[static_cast<std::size_t>(i)];
+    for (const auto& p : set.points_part_mm) o.points_m.push_back(part_world * (p / 1000.0));
     overlays.push_back(std::move(o));
+    radius_scale.push_back(set.radius_scale);
   }
   std::vector<Eigen::Vector3d> interest;
   if (close_up) {
@@ -200,7 +204,9 @@ int RunRenderScene(const LoadedScene& ls, const RenderRequest& req) {
   }
   // Paths and stitches are drawn thick enough to see at the chosen distance.
   const double min_radius = view.distance_m * (close_up ? 0.0006 : 0.0012);
-  for (auto& o : overlays) o.radius_m = std::max(o.radius_m, min_radius);
+  for (std::size_t i = 0; i < overlays.size(); ++i) {
+    overlays[i].radius_m = std::max(overlays[i].radius_m, min_radius) * radius_scale[i];
+  }
   const render::Image img = renderer->Render(data.get(), view, overlays);
   if (std::string err = render::WritePng(req.output, img); !err.empty()) {
     PrintError("io-write", err);
@@ -249,7 +255,10 @@ void AddRenderCommand(CLI::App& app, int& exit_code) {
         exit_code = kExitBadInput;
         return;
       }
-      req.program_points_part_mm = std::move(po->stitch_points_part_mm);
+      RenderRequest::PointSet set;
+      set.label = "stitch";
+      set.points_part_mm = std::move(po->stitch_points_part_mm);
+      req.point_sets.push_back(std::move(set));
       if (po->first_tool_in_part_mm) start_tool = *po->first_tool_in_part_mm;
     }
     // Start pose: the approach point, clear above the first stitch along its normal, as a

@@ -1,0 +1,205 @@
+// `stitchsim verify`: execute a programme on the cell, check every stitch and pose, report.
+#include <CLI/CLI.hpp>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "stitchsim/common/files.h"
+#include "stitchsim/geom/rotation.h"
+#include "stitchsim/process/stitch_cycle.h"
+#include "stitchsim/program/dialect.h"
+#include "stitchsim/sim/executor.h"
+#include "stitchsim/verify/verifier.h"
+
+namespace stitchsim::app {
+namespace {
+
+struct VerifyArgs {
+  std::string program;
+  std::string scene;
+  std::string report_json;
+  std::string junit;
+  std::string snapshots;
+};
+
+// Passes the trace on and shows progress on a terminal.
+class ProgressSink : public sim::TraceSink {
+ public:
+  ProgressSink(sim::TraceSink& next, bool show) : next_(next), show_(show) {}
+  void OnLine(const sim::LineRecord& line) override {
+    next_.OnLine(line);
+    if (show_ && ++lines_ % 20000 == 0) {
+      std::fprintf(stderr, "\rverify: %ld lines, %ld stitches ...", lines_, stitches_);
+    }
+  }
+  void OnSample(const sim::TraceSample& s) override {
+    if (s.event == sim::SampleEvent::kNeedleEntry) ++stitches_;
+    next_.OnSample(s);
+  }
+  void Done() const {
+    if (show_ && lines_ >= 20000) std::fprintf(stderr, "\r%60s\r", "");
+  }
+
+ private:
+  sim::TraceSink& next_;
+  bool show_;
+  long lines_ = 0;
+  long stitches_ = 0;
+};
+
+// Colours by verdict.
+constexpr std::array<float, 4> kClean = {0.1f, 0.85f, 0.2f, 1.0f};
+constexpr std::array<float, 4> kWarn = {1.0f, 0.65f, 0.0f, 1.0f};
+constexpr std::array<float, 4> kError = {0.95f, 0.05f, 0.05f, 1.0f};
+
+// Overview: every stitch coloured by its verdict (clean stitches thinned to keep the
+// picture within the renderer's geometry budget; flagged ones all drawn).
+int WriteOverview(const LoadedScene& ls, const verify::Verifier& v, const std::string& dir,
+                  const sim::JointVector& joints, const Eigen::Isometry3d& tool_world) {
+  RenderRequest req;
+  req.output = (std::filesystem::path(dir) / "overview.png").string();
+  req.joints = joints;
+  req.tool_world_m = tool_world;
+  RenderRequest::PointSet sets[3];
+  sets[0].label = "stitch";
+  sets[0].rgba = kClean;
+  sets[1].label = "stitch_warning";
+  sets[1].rgba = kWarn;
+  sets[2].label = "stitch_error";
+  sets[2].rgba = kError;
+  const auto& marks = v.StitchMarks();
+  const std::size_t stride = std::max<std::size_t>(1, marks.size() / 6000);
+  for (std::size_t i = 0; i < marks.size(); ++i) {
+    const auto& m = marks[i];
+    if (m.severity == 0 && i % stride != 0) continue;
+    auto& set = sets[std::min<int>(m.severity, 2)];
+    if (set.points_part_mm.size() < 6000) set.points_part_mm.push_back(m.position_mm.cast<double>());
+  }
+  for (auto& s : sets) {
+    if (!s.points_part_mm.empty()) req.point_sets.push_back(std::move(s));
+  }
+  if (req.point_sets.empty()) return kExitOk;
+  return RunRenderScene(ls, req);
+}
+
+// Close-up of the head at a rule's worst sample, the offending stitch highlighted.
+int WriteCloseUp(const LoadedScene& ls, const sim::CellSetup& cell, const verify::Rule& rule,
+                 const std::string& dir) {
+  const auto& s = rule.WorstSample();
+  if (!s) return kExitOk;
+  RenderRequest req;
+  req.output = (std::filesystem::path(dir) / (rule.Summary().id + ".png")).string();
+  req.view = "head";
+  req.width = 1024;
+  req.height = 768;
+  req.joints = s->has_joints ? s->joints : SolveStartPose(ls, s->tool_part).joints;
+  req.tool_world_m = sim::PartPoseWorld(cell, req.joints[sim::kRotator]) *
+                      [&] {
+                        Eigen::Isometry3d t = s->tool_part;
+                        t.translation() /= 1000.0;
+                        return t;
+                      }();
+  RenderRequest::PointSet hit;
+  hit.label = "stitch_error";
+  hit.rgba = kError;
+  hit.radius_scale = 2.0;
+  hit.points_part_mm.push_back(s->tool_part.translation());
+  req.point_sets.push_back(std::move(hit));
+  return RunRenderScene(ls, req);
+}
+
+int RunVerify(const VerifyArgs& a) {
+  auto ls = LoadSceneAndRobot(a.scene);
+  if (!ls) return kExitBadInput;
+  const program::Dialect& dialect = program::Dialect::Default();
+  std::ifstream probe(a.program, std::ios::binary);
+  if (!probe) {
+    PrintError("io-missing-file", "cannot open programme " + a.program);
+    return kExitBadInput;
+  }
+  const double stitch_length =
+      sim::DeclaredStitchLength(probe, dialect).value_or(ls->scene->nominal_stitch_length_mm);
+  std::ifstream in(a.program, std::ios::binary);
+  const sim::CellSetup cell = sim::MakeCellSetup(*ls->robot, *ls->scene);
+  const process::ProcessModel model = process::MakeProcessModel(*ls->scene, stitch_length);
+  verify::RuleContext ctx{ls->scene.get(), ls->robot.get(), &model};
+  verify::Verifier verifier(ctx, !a.snapshots.empty());
+  ProgressSink progress(verifier, ::isatty(2) != 0);
+  BoundedDiagnosticSink diagnostics(100);
+  const sim::ExecutionSummary run =
+      sim::ExecuteProgram(cell, model, dialect, in, a.program, sim::ExecuteOptionsFor(*ls->scene),
+                          diagnostics, progress);
+  progress.Done();
+  if (PrintDiagnostics(diagnostics) || !run.ok) return kExitBadInput;
+
+  verify::Report report;
+  report.program_file = a.program;
+  report.scene_file = a.scene;
+  report.scene_name = ls->scene->name;
+  report.head = ls->scene->head.name;
+  report.lines = run.lines;
+  report.moves = run.moves;
+  report.stitch_length_mm = stitch_length;
+  report.cycle_time_s = run.time_s;
+  verifier.Finish(report);
+
+  // Reports are written whole or not at all.
+  if (!a.report_json.empty()) {
+    if (std::string err = WriteFileAtomically(a.report_json, verify::ReportToJson(report));
+        !err.empty()) {
+      PrintError("io-write", err);
+      return kExitBadInput;
+    }
+  }
+  if (!a.junit.empty()) {
+    if (std::string err = WriteFileAtomically(a.junit, verify::ReportToJunit(report));
+        !err.empty()) {
+      PrintError("io-write", err);
+      return kExitBadInput;
+    }
+  }
+  std::cout << verify::ReportToText(report);
+  if (!a.snapshots.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(a.snapshots, ec);
+    if (ec) {
+      PrintError("io-write", "cannot create snapshot folder " + a.snapshots + ": " + ec.message());
+      return kExitBadInput;
+    }
+    // The overview shows the robot at the first stitch's pose.
+    const auto& marks = verifier.StitchMarks();
+    Eigen::Isometry3d first = Eigen::Isometry3d::Identity();
+    if (!marks.empty()) first.translation() = marks.front().position_mm.cast<double>();
+    const StartPose start = SolveStartPose(*ls, PathStartTool(*ls->scene, ls->scene->paths.front()));
+    if (WriteOverview(*ls, verifier, a.snapshots, start.joints, start.tool_world_m) != kExitOk) {
+      return kExitBadInput;
+    }
+    for (const auto& rule : verifier.Rules()) {
+      if (rule->Summary().errors == 0) continue;
+      if (WriteCloseUp(*ls, cell, *rule, a.snapshots) != kExitOk) return kExitBadInput;
+    }
+  }
+  return report.errors == 0 ? kExitOk : kExitFindings;
+}
+
+}  // namespace
+
+void AddVerifyCommand(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<VerifyArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "verify", "Execute a programme on the cell and check every stitch and pose");
+  cmd->add_option("program", args->program, "Programme file (G-code)")->required();
+  cmd->add_option("--scene", args->scene, "Scene YAML file")->required();
+  cmd->add_option("--report", args->report_json, "Write the JSON report here");
+  cmd->add_option("--junit", args->junit, "Write a JUnit XML report here");
+  cmd->add_option("--snapshots", args->snapshots,
+                  "Write overview.png and <rule>.png close-ups into this folder");
+  cmd->callback([args, &exit_code] { exit_code = RunVerify(*args); });
+}
+
+}  // namespace stitchsim::app

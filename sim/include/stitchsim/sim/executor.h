@@ -1,0 +1,63 @@
+#pragma once
+// Executes a programme on the cell: line by line, position interpolated linearly and
+// orientation by slerp, the drive axis U advancing linearly; the stitch-cycle phase and the
+// needles' in/out derived from U; rail + arm solved by IK. Streams a Trace.
+
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+#include "stitchsim/common/diagnostics.h"
+#include "stitchsim/process/stitch_cycle.h"
+#include "stitchsim/program/dialect.h"
+#include "stitchsim/program/reader.h"
+#include "stitchsim/sim/cell.h"
+#include "stitchsim/sim/trace.h"
+
+namespace stitchsim::sim {
+
+/// Sampling bounds. Between samples the tool moves at most this far, so no rule can miss an
+/// event: needle entry/exit are exact events; joint checks run on the coarse grid, the
+/// needle rules on the fine in-preform grid.
+struct ExecuteOptions {
+  double max_step_mm = 20.0;              ///< IK grid: translation per step
+  double max_step_rad = 0.034906585;      ///< IK grid: rotation per step (2 deg)
+  double in_preform_step_mm = 0.5;        ///< needles in: translation per sample
+  double in_preform_step_rad = 0.0017453; ///< needles in: rotation per sample (0.1 deg)
+  double rapid_speed_mm_s = 500.0;        ///< G0 translation speed
+  double rotation_speed_rad_s = 0.5235988;///< pure-rotation speed (head spec)
+  double stitch_rate_per_min = 300.0;     ///< drive revolutions per minute
+  double settle_time_s = 0.15;            ///< dwell after a pure rotation line
+  /// Look ahead over the whole programme (seekable input only) to start a4 and a6 on the
+  /// 2 pi branch that keeps their full travel within limits.
+  bool choose_start_branch = true;
+};
+
+ExecuteOptions ExecuteOptionsFor(const scene::Scene& scene);
+
+struct ExecutionSummary {
+  long lines = 0;     ///< programme lines read
+  long moves = 0;     ///< motion lines executed
+  long stitches = 0;  ///< stitch cycles started (needle entries)
+  double time_s = 0.0;
+  program::ProgramHeader header;
+  bool ok = false;    ///< no input errors (rule findings are the verifier's business)
+};
+
+/// Runs `in` through the parser, the modal state and the kinematics, sending every line and
+/// sample to `sink`. Input errors (malformed programme, incomplete pose, NaN) are reported
+/// to `diagnostics`; execution stops at the first error.
+ExecutionSummary ExecuteProgram(const CellSetup& cell, const process::ProcessModel& process,
+                                const program::Dialect& dialect, std::istream& in,
+                                const std::string& file_name, const ExecuteOptions& options,
+                                DiagnosticSink& diagnostics, TraceSink& sink);
+
+}  // namespace stitchsim::sim
+
+namespace stitchsim::sim {
+
+/// The stitch length a programme declares in its header (`stitch_length_mm=`), read from
+/// the lines before its first move; nullopt if it declares none.
+std::optional<double> DeclaredStitchLength(std::istream& in, const program::Dialect& dialect);
+
+}  // namespace stitchsim::sim

@@ -1,0 +1,72 @@
+#pragma once
+// The verification report: verdict, per-rule summaries and findings. Filled by the verifier
+// (verify/verifier.h), written as text, JSON (docs/report-format.md) and JUnit XML. Writers
+// are deterministic: the same report gives byte-identical output.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace stitchsim::verify {
+
+enum class FindingSeverity { kWarning, kError };
+
+/// One rule violation at one place in the programme.
+struct Finding {
+  std::string rule;                                   ///< rule id, e.g. "needle.side_force"
+  FindingSeverity severity = FindingSeverity::kError;
+  int line = 0;         ///< 1-based source line of the programme; 0 = not tied to a line
+  long stitch = 0;      ///< 1-based stitch index; 0 = not tied to a stitch
+  double value = 0.0;   ///< what was measured, in `unit`
+  double limit = 0.0;   ///< the limit it broke, in `unit`
+  std::string unit;     ///< "mm", "deg", "%", "N", "" (dimensionless)
+  std::string subject;  ///< what was measured: a needle ("insertion"), a joint ("a5"), ...
+  std::string message;  ///< one sentence for people
+};
+
+/// Everything one rule saw over the whole programme.
+struct RuleSummary {
+  std::string id;           ///< "needle.side_force"
+  std::string description;  ///< one line: what the rule checks
+  std::string unit;         ///< unit of values and limits
+  long checked = 0;         ///< items checked (stitches, samples, lines; see the rule)
+  long errors = 0;          ///< findings of error severity (all, even past the cap)
+  long warnings = 0;        ///< findings of warning severity (all, even past the cap)
+  std::optional<double> error_limit;    ///< the error limit in force, if the rule has one
+  std::optional<double> warning_limit;  ///< the warning limit in force, if any
+  /// The worst value seen (largest, or smallest for lower-bound rules) and where.
+  std::optional<double> worst_value;
+  int worst_line = 0;
+  long worst_stitch = 0;
+  std::vector<Finding> findings;  ///< the first kMaxFindingsPerRule findings, in line order
+  bool truncated = false;         ///< more findings than were kept
+};
+
+inline constexpr std::size_t kMaxFindingsPerRule = 200;
+
+struct Report {
+  std::string program_file;  ///< as given on the command line
+  std::string scene_file;
+  std::string scene_name;
+  std::string head;
+  std::string verdict;       ///< "pass" (no errors) or "fail"
+  long lines = 0;            ///< programme lines read
+  long moves = 0;            ///< motion lines executed
+  long stitches = 0;         ///< stitch cycles executed
+  double stitch_length_mm = 0.0;
+  double cycle_time_s = 0.0;  ///< simulated programme time
+  long errors = 0;            ///< sum over rules
+  long warnings = 0;          ///< sum over rules
+  std::vector<RuleSummary> rules;  ///< in registry order
+};
+
+/// Human summary for stdout: verdict, counts per rule, worst value and its line.
+std::string ReportToText(const Report& report);
+/// JSON, format in docs/report-format.md; keys in a fixed order, numbers in shortest
+/// round-trip form, trailing newline.
+std::string ReportToJson(const Report& report);
+/// JUnit XML: one <testsuite> "stitchsim", one <testcase> per rule, a <failure> listing the
+/// lines for rules with errors (warnings go to <system-out>).
+std::string ReportToJunit(const Report& report);
+
+}  // namespace stitchsim::verify

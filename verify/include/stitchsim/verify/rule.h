@@ -1,0 +1,83 @@
+#pragma once
+// The extension point of the verifier: a Rule has an id, limits from the head/scene spec,
+// and checks over the trace. Adding a rule = one new class + one line in MakeRules.
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stitchsim/process/stitch_cycle.h"
+#include "stitchsim/scene/scene.h"
+#include "stitchsim/sim/robot_model.h"
+#include "stitchsim/sim/trace.h"
+#include "stitchsim/verify/report.h"
+
+namespace stitchsim::verify {
+
+/// A closed needle window: the needles went in and came out again.
+struct WindowRecord {
+  long stitch = 0;
+  int entry_line = 0;   ///< line where the needles entered
+  int exit_line = 0;    ///< line where they left
+  process::WindowMetrics metrics;
+  sim::TraceSample exit_sample;  ///< the last sample of the window (for snapshots)
+};
+
+/// The needles pierce the preform: where, and how the head stood.
+struct PenetrationRecord {
+  long stitch = 0;
+  int line = 0;
+  Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();  ///< part frame, mm
+  std::vector<std::optional<Eigen::Vector3d>> points;     ///< per needle, on the surface
+  geom::SurfaceProjection foot;  ///< the tool point projected on the stitching surface
+  sim::TraceSample sample;
+};
+
+/// What rules may read besides the trace.
+struct RuleContext {
+  const scene::Scene* scene = nullptr;
+  const sim::RobotModel* robot = nullptr;
+  const process::ProcessModel* process = nullptr;
+};
+
+class Rule {
+ public:
+  virtual ~Rule() = default;
+  virtual void OnLine(const sim::LineRecord&) {}
+  virtual void OnSample(const sim::TraceSample&) {}
+  virtual void OnWindow(const WindowRecord&) {}
+  virtual void OnPenetration(const PenetrationRecord&) {}
+  virtual void Finish(const RuleContext&) {}
+
+  const RuleSummary& Summary() const { return summary_; }
+  /// The trace sample at the worst finding, for the close-up snapshot.
+  const std::optional<sim::TraceSample>& WorstSample() const { return worst_sample_; }
+
+ protected:
+  Rule(std::string id, std::string description, std::string unit);
+  /// Limit `key` of this rule from the merged head + scene limits, or `fallback`.
+  static std::optional<double> LimitOf(const RuleContext& ctx, const std::string& rule,
+                                       const std::string& key);
+  /// Counts one checked item and records a finding when `value` exceeds a limit
+  /// (upper-bound check). Returns the severity recorded, if any.
+  std::optional<FindingSeverity> CheckUpper(double value, int line, long stitch,
+                                            const std::string& subject,
+                                            const std::string& what,
+                                            const sim::TraceSample* sample);
+  void Counted() { ++summary_.checked; }
+  /// Records a finding directly (for yes/no rules).
+  void Record(FindingSeverity severity, double value, double limit, int line, long stitch,
+              const std::string& subject, std::string message, const sim::TraceSample* sample);
+  /// Tracks the worst value without a finding.
+  void Observe(double value, int line, long stitch, const sim::TraceSample* sample);
+
+  RuleSummary summary_;
+  std::optional<sim::TraceSample> worst_sample_;
+};
+
+/// Every rule, in report order, with limits from `ctx`.
+std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx);
+
+}  // namespace stitchsim::verify

@@ -1,0 +1,97 @@
+// The JSON report (docs/report-format.md, "JSON report"). Keys are written in the order below,
+// which is part of the format; numbers go through nlohmann's shortest round-trip printer.
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "stitchsim/verify/report.h"
+
+namespace stitchsim::verify {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+constexpr int kFormatVersion = 1;
+
+// NaN and infinity have no JSON spelling: they become null rather than invalid text.
+Json Number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+Json OptionalNumber(const std::optional<double>& v) { return v ? Number(*v) : Json(nullptr); }
+
+const char* SeverityName(FindingSeverity severity) {
+  return severity == FindingSeverity::kError ? "error" : "warning";
+}
+
+Json FindingToJson(const Finding& finding) {
+  Json j = Json::object();
+  j["rule"] = finding.rule;
+  j["severity"] = SeverityName(finding.severity);
+  j["line"] = finding.line;
+  j["stitch"] = finding.stitch;
+  j["value"] = Number(finding.value);
+  j["limit"] = Number(finding.limit);
+  j["unit"] = finding.unit;
+  j["subject"] = finding.subject;
+  j["message"] = finding.message;
+  return j;
+}
+
+Json RuleToJson(const RuleSummary& rule) {
+  Json j = Json::object();
+  j["id"] = rule.id;
+  j["description"] = rule.description;
+  j["unit"] = rule.unit;
+  j["checked"] = rule.checked;
+  j["errors"] = rule.errors;
+  j["warnings"] = rule.warnings;
+  j["error_limit"] = OptionalNumber(rule.error_limit);
+  j["warning_limit"] = OptionalNumber(rule.warning_limit);
+  if (rule.worst_value) {
+    Json worst = Json::object();
+    worst["value"] = Number(*rule.worst_value);
+    worst["line"] = rule.worst_line;
+    worst["stitch"] = rule.worst_stitch;
+    j["worst"] = std::move(worst);
+  } else {
+    j["worst"] = nullptr;
+  }
+  j["findings_truncated"] = rule.truncated;
+  Json findings = Json::array();
+  for (const Finding& finding : rule.findings) findings.push_back(FindingToJson(finding));
+  j["findings"] = std::move(findings);
+  return j;
+}
+
+}  // namespace
+
+std::string ReportToJson(const Report& report) {
+  Json j = Json::object();
+  j["stitchsim_report"] = kFormatVersion;
+  j["verdict"] = report.verdict;
+  j["program"] = report.program_file;
+  Json scene = Json::object();
+  scene["file"] = report.scene_file;
+  scene["name"] = report.scene_name;
+  scene["head"] = report.head;
+  j["scene"] = std::move(scene);
+  Json counts = Json::object();
+  counts["lines"] = report.lines;
+  counts["moves"] = report.moves;
+  counts["stitches"] = report.stitches;
+  counts["errors"] = report.errors;
+  counts["warnings"] = report.warnings;
+  j["counts"] = std::move(counts);
+  j["stitch_length_mm"] = Number(report.stitch_length_mm);
+  j["cycle_time_s"] = Number(report.cycle_time_s);
+  Json rules = Json::array();
+  for (const RuleSummary& rule : report.rules) rules.push_back(RuleToJson(rule));
+  j["rules"] = std::move(rules);
+  // Malformed UTF-8 in a string (a programme comment, a path) becomes U+FFFD instead of
+  // throwing; non-ASCII stays UTF-8 and control characters are escaped as \u00XX.
+  return j.dump(2, ' ', /*ensure_ascii=*/false, Json::error_handler_t::replace) + "\n";
+}
+
+}  // namespace stitchsim::verify

@@ -1,0 +1,263 @@
+// The JUnit XML report (docs/report-format.md, "JUnit XML"): one <testsuite> per run, one
+// <testcase> per rule, a <failure> for a rule with errors. No timestamps or host names, so
+// the same report gives the same bytes.
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+#include "stitchsim/verify/report.h"
+
+namespace stitchsim::verify {
+namespace {
+
+constexpr char32_t kInvalidCodePoint = 0xFFFFFFFF;
+constexpr char32_t kReplacementChar = 0xFFFD;
+
+// Decodes the UTF-8 code point at `pos` and advances past it. A malformed sequence (bad lead
+// or continuation byte, overlong form, surrogate, > U+10FFFF, cut short) consumes one byte
+// and yields kInvalidCodePoint.
+char32_t NextCodePoint(std::string_view s, std::size_t& pos) {
+  const auto lead = static_cast<unsigned char>(s[pos]);
+  if (lead < 0x80) {
+    ++pos;
+    return lead;
+  }
+  std::size_t length = 0;
+  char32_t cp = 0;
+  char32_t smallest = 0;
+  if ((lead & 0xE0) == 0xC0) {
+    length = 2, cp = lead & 0x1F, smallest = 0x80;
+  } else if ((lead & 0xF0) == 0xE0) {
+    length = 3, cp = lead & 0x0F, smallest = 0x800;
+  } else if ((lead & 0xF8) == 0xF0) {
+    length = 4, cp = lead & 0x07, smallest = 0x10000;
+  } else {
+    ++pos;
+    return kInvalidCodePoint;
+  }
+  if (s.size() - pos < length) {
+    ++pos;
+    return kInvalidCodePoint;
+  }
+  for (std::size_t k = 1; k < length; ++k) {
+    const auto byte = static_cast<unsigned char>(s[pos + k]);
+    if ((byte & 0xC0) != 0x80) {
+      ++pos;
+      return kInvalidCodePoint;
+    }
+    cp = (cp << 6) | (byte & 0x3F);
+  }
+  if (cp < smallest || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) {
+    ++pos;
+    return kInvalidCodePoint;
+  }
+  pos += length;
+  return cp;
+}
+
+void AppendUtf8(std::string& out, char32_t cp) {
+  if (cp < 0x80) {
+    out += static_cast<char>(cp);
+  } else if (cp < 0x800) {
+    out += static_cast<char>(0xC0 | (cp >> 6));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  } else if (cp < 0x10000) {
+    out += static_cast<char>(0xE0 | (cp >> 12));
+    out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  } else {
+    out += static_cast<char>(0xF0 | (cp >> 18));
+    out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
+    out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  }
+}
+
+// XML 1.0 "Char": tab, newline, carriage return, and U+0020 and up except the surrogates
+// (never decoded) and U+FFFE / U+FFFF.
+bool IsXmlChar(char32_t cp) {
+  if (cp < 0x20) return cp == U'\t' || cp == U'\n' || cp == U'\r';
+  return cp != 0xFFFE && cp != 0xFFFF && cp <= 0x10FFFF;
+}
+
+enum class XmlContext { kText, kAttribute };
+
+// Escapes markup characters and quotes; characters XML 1.0 cannot carry at all (most
+// controls, malformed UTF-8) become U+FFFD. In attributes, whitespace controls are written
+// as character references so a parser's attribute normalisation keeps them.
+std::string Escape(std::string_view s, XmlContext context) {
+  std::string out;
+  out.reserve(s.size() + s.size() / 8);
+  for (std::size_t pos = 0; pos < s.size();) {
+    const char32_t cp = NextCodePoint(s, pos);
+    switch (cp) {
+      case U'&':
+        out += "&amp;";
+        break;
+      case U'<':
+        out += "&lt;";
+        break;
+      case U'>':
+        out += "&gt;";
+        break;
+      case U'"':
+        out += "&quot;";
+        break;
+      case U'\'':
+        out += "&apos;";
+        break;
+      case U'\r':
+        out += "&#13;";
+        break;
+      case U'\n':
+        out += context == XmlContext::kAttribute ? "&#10;" : "\n";
+        break;
+      case U'\t':
+        out += context == XmlContext::kAttribute ? "&#9;" : "\t";
+        break;
+      default:
+        AppendUtf8(out, IsXmlChar(cp) ? cp : kReplacementChar);
+        break;
+    }
+  }
+  return out;
+}
+
+std::string Attribute(std::string_view name, std::string_view value) {
+  return " " + std::string(name) + "=\"" + Escape(value, XmlContext::kAttribute) + "\"";
+}
+
+std::string Attribute(std::string_view name, long value) {
+  return Attribute(name, std::to_string(value));
+}
+
+// Up to four significant digits, no exponent for 1e-4 <= |v| < 1e9, no trailing zeros:
+// 101.3, 0.01234, 12346, 5. Locale-independent (std::to_chars). Same as the text summary.
+std::string FormatNumber(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  if (v == 0.0) return "0";  // also -0
+  std::array<char, 64> buffer{};
+  char* const first = buffer.data();
+  char* const last = buffer.data() + buffer.size();
+  const double magnitude = std::fabs(v);
+  if (magnitude < 1e-4 || magnitude >= 1e9) {
+    const auto result = std::to_chars(first, last, v, std::chars_format::general, 4);
+    return std::string(first, result.ptr);
+  }
+  int decimals = 0;
+  for (double bound = 1000.0; magnitude < bound && decimals < 7; bound /= 10.0) ++decimals;
+  const auto result = std::to_chars(first, last, v, std::chars_format::fixed, decimals);
+  std::string text(first, result.ptr);
+  if (text.find('.') != std::string::npos) {
+    text.erase(text.find_last_not_of('0') + 1);
+    if (text.back() == '.') text.pop_back();
+  }
+  return text;
+}
+
+std::string WithUnit(const std::string& number, const std::string& unit) {
+  return unit.empty() ? number : number + " " + unit;
+}
+
+std::string Count(long n, std::string_view singular, std::string_view plural) {
+  return std::to_string(n) + " " + std::string(n == 1 ? singular : plural);
+}
+
+// "line 12 stitch 3", "line 12", "stitch 3" or "programme".
+std::string Location(int line, long stitch) {
+  std::string where;
+  if (line > 0) where = "line " + std::to_string(line);
+  if (stitch > 0) where += (where.empty() ? "" : " ") + ("stitch " + std::to_string(stitch));
+  return where.empty() ? "programme" : where;
+}
+
+// One finding on one line of element text: "line 12 stitch 3: message", warnings marked.
+std::string FindingLine(const Finding& finding) {
+  std::string message = finding.message;
+  for (char& c : message) {
+    if (c == '\n' || c == '\r' || c == '\t') c = ' ';
+  }
+  return Location(finding.line, finding.stitch) + ": " +
+         (finding.severity == FindingSeverity::kWarning ? "warning: " : "") + message;
+}
+
+// "3 errors; worst 1.2 mm at line 12 (limit 0.5 mm)", parts left out when unknown.
+std::string FailureMessage(const RuleSummary& rule) {
+  std::string message = Count(rule.errors, "error", "errors");
+  if (rule.worst_value) {
+    message += "; worst " + WithUnit(FormatNumber(*rule.worst_value), rule.unit);
+    if (rule.worst_line > 0) {
+      message += " at line " + std::to_string(rule.worst_line);
+    } else if (rule.worst_stitch > 0) {
+      message += " at stitch " + std::to_string(rule.worst_stitch);
+    }
+  }
+  if (rule.error_limit) {
+    message += " (limit " + WithUnit(FormatNumber(*rule.error_limit), rule.unit) + ")";
+  }
+  return message;
+}
+
+// The element text of a <failure> (every kept finding) or <system-out> (kept warnings),
+// one finding a line, then "... and N more" for those past the cap.
+std::string FindingList(const RuleSummary& rule, bool warnings_only) {
+  std::string text;
+  long listed = 0;
+  for (const Finding& finding : rule.findings) {
+    if (warnings_only && finding.severity != FindingSeverity::kWarning) continue;
+    if (!text.empty()) text += '\n';
+    text += FindingLine(finding);
+    ++listed;
+  }
+  const long total = warnings_only ? rule.warnings : rule.errors + rule.warnings;
+  if (total > listed) {
+    text += (text.empty() ? "" : "\n") + ("... and " + std::to_string(total - listed) + " more");
+  } else if (rule.truncated) {
+    text += text.empty() ? "... and more" : "\n... and more";
+  }
+  return Escape(text, XmlContext::kText);
+}
+
+std::string Testcase(const RuleSummary& rule, const std::string& classname) {
+  std::string out = "    <testcase" + Attribute("classname", classname) +
+                    Attribute("name", rule.id) + Attribute("time", "0");
+  if (rule.errors > 0) {
+    out += ">\n      <failure" + Attribute("message", FailureMessage(rule)) +
+           Attribute("type", rule.id) + ">" + FindingList(rule, false) + "</failure>\n";
+    out += "    </testcase>\n";
+  } else if (rule.warnings > 0) {
+    out += ">\n      <system-out>" + FindingList(rule, true) + "</system-out>\n";
+    out += "    </testcase>\n";
+  } else {
+    out += "/>\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string ReportToJunit(const Report& report) {
+  const std::string suite =
+      "stitchsim." + (report.scene_name.empty() ? std::string("unnamed") : report.scene_name);
+  const long tests = static_cast<long>(report.rules.size());
+  long failures = 0;
+  for (const RuleSummary& rule : report.rules) failures += rule.errors > 0 ? 1 : 0;
+
+  std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  out += "<testsuites" + Attribute("name", "stitchsim") + Attribute("tests", tests) +
+         Attribute("failures", failures) + Attribute("errors", 0L) + Attribute("time", "0") + ">\n";
+  out += "  <testsuite" + Attribute("name", suite) + Attribute("tests", tests) +
+         Attribute("failures", failures) + Attribute("errors", 0L) + Attribute("skipped", 0L) +
+         Attribute("time", "0") + ">\n";
+  for (const RuleSummary& rule : report.rules) out += Testcase(rule, suite);
+  out += "  </testsuite>\n";
+  out += "</testsuites>\n";
+  return out;
+}
+
+}  // namespace stitchsim::verify

@@ -1,0 +1,261 @@
+// The plain-text summary of a Report, for stdout (docs/report-format.md, "Text summary").
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "stitchsim/verify/report.h"
+
+namespace stitchsim::verify {
+namespace {
+
+constexpr std::size_t kTextColumns = 100;
+constexpr std::size_t kExamplesPerRule = 5;
+constexpr char32_t kInvalidCodePoint = 0xFFFFFFFF;
+constexpr char32_t kReplacementChar = 0xFFFD;
+
+// Decodes the UTF-8 code point at `pos` and advances past it. A malformed sequence (bad lead
+// or continuation byte, overlong form, surrogate, > U+10FFFF, cut short) consumes one byte
+// and yields kInvalidCodePoint.
+char32_t NextCodePoint(std::string_view s, std::size_t& pos) {
+  const auto lead = static_cast<unsigned char>(s[pos]);
+  if (lead < 0x80) {
+    ++pos;
+    return lead;
+  }
+  std::size_t length = 0;
+  char32_t cp = 0;
+  char32_t smallest = 0;
+  if ((lead & 0xE0) == 0xC0) {
+    length = 2, cp = lead & 0x1F, smallest = 0x80;
+  } else if ((lead & 0xF0) == 0xE0) {
+    length = 3, cp = lead & 0x0F, smallest = 0x800;
+  } else if ((lead & 0xF8) == 0xF0) {
+    length = 4, cp = lead & 0x07, smallest = 0x10000;
+  } else {
+    ++pos;
+    return kInvalidCodePoint;
+  }
+  if (s.size() - pos < length) {
+    ++pos;
+    return kInvalidCodePoint;
+  }
+  for (std::size_t k = 1; k < length; ++k) {
+    const auto byte = static_cast<unsigned char>(s[pos + k]);
+    if ((byte & 0xC0) != 0x80) {
+      ++pos;
+      return kInvalidCodePoint;
+    }
+    cp = (cp << 6) | (byte & 0x3F);
+  }
+  if (cp < smallest || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) {
+    ++pos;
+    return kInvalidCodePoint;
+  }
+  pos += length;
+  return cp;
+}
+
+void AppendUtf8(std::string& out, char32_t cp) {
+  if (cp < 0x80) {
+    out += static_cast<char>(cp);
+  } else if (cp < 0x800) {
+    out += static_cast<char>(0xC0 | (cp >> 6));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  } else if (cp < 0x10000) {
+    out += static_cast<char>(0xE0 | (cp >> 12));
+    out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  } else {
+    out += static_cast<char>(0xF0 | (cp >> 18));
+    out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
+    out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  }
+}
+
+// One line of valid UTF-8 that cannot upset a terminal: whitespace controls become spaces,
+// other controls (C0, DEL, C1) and malformed bytes become U+FFFD.
+std::string Printable(std::string_view s) {
+  std::string out;
+  out.reserve(s.size());
+  for (std::size_t pos = 0; pos < s.size();) {
+    const char32_t cp = NextCodePoint(s, pos);
+    if (cp == U'\t' || cp == U'\n' || cp == U'\r' || cp == U'\v' || cp == U'\f') {
+      out += ' ';
+    } else if (cp == kInvalidCodePoint || cp < 0x20 || (cp >= 0x7F && cp < 0xA0)) {
+      AppendUtf8(out, kReplacementChar);
+    } else {
+      AppendUtf8(out, cp);
+    }
+  }
+  return out;
+}
+
+// Columns taken by valid UTF-8 text, counting one per code point (wide CJK glyphs are rare
+// enough in reports not to matter).
+std::size_t Columns(std::string_view s) {
+  return static_cast<std::size_t>(
+      std::count_if(s.begin(), s.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+}
+
+// Cuts valid UTF-8 text to at most `columns` columns, ending in "..." when cut.
+std::string Shorten(std::string s, std::size_t columns) {
+  if (Columns(s) <= columns) return s;
+  const std::size_t keep = columns > 3 ? columns - 3 : 0;
+  std::size_t kept = 0;
+  std::size_t pos = 0;
+  while (pos < s.size() && kept < keep) {
+    NextCodePoint(s, pos);
+    ++kept;
+  }
+  s.resize(pos);
+  return s + "...";
+}
+
+// Up to four significant digits, no exponent for 1e-4 <= |v| < 1e9, no trailing zeros:
+// 101.3, 0.01234, 12346, 5. Locale-independent (std::to_chars).
+std::string FormatNumber(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  if (v == 0.0) return "0";  // also -0
+  std::array<char, 64> buffer{};
+  char* const first = buffer.data();
+  char* const last = buffer.data() + buffer.size();
+  const double magnitude = std::fabs(v);
+  if (magnitude < 1e-4 || magnitude >= 1e9) {
+    const auto result = std::to_chars(first, last, v, std::chars_format::general, 4);
+    return std::string(first, result.ptr);
+  }
+  int decimals = 0;
+  for (double bound = 1000.0; magnitude < bound && decimals < 7; bound /= 10.0) ++decimals;
+  const auto result = std::to_chars(first, last, v, std::chars_format::fixed, decimals);
+  std::string text(first, result.ptr);
+  if (text.find('.') != std::string::npos) {
+    text.erase(text.find_last_not_of('0') + 1);
+    if (text.back() == '.') text.pop_back();
+  }
+  return text;
+}
+
+std::string FormatFixed1(double v) {
+  if (!std::isfinite(v)) return FormatNumber(v);
+  std::array<char, 400> buffer{};  // room for the largest double in fixed notation
+  const auto result =
+      std::to_chars(buffer.data(), buffer.data() + buffer.size(), v, std::chars_format::fixed, 1);
+  return std::string(buffer.data(), result.ptr);
+}
+
+std::string WithUnit(const std::string& number, const std::string& unit) {
+  return unit.empty() ? number : number + " " + Printable(unit);
+}
+
+std::string Count(long n, std::string_view singular, std::string_view plural) {
+  return std::to_string(n) + " " + std::string(n == 1 ? singular : plural);
+}
+
+// "line 12 stitch 3", "line 12", "stitch 3" or "programme".
+std::string Location(int line, long stitch) {
+  std::string where;
+  if (line > 0) where = "line " + std::to_string(line);
+  if (stitch > 0) where += (where.empty() ? "" : " ") + ("stitch " + std::to_string(stitch));
+  return where.empty() ? "programme" : where;
+}
+
+std::string Uppercase(std::string s) {
+  for (char& c : s) {
+    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
+  }
+  return s;
+}
+
+std::string Headline(const Report& report) {
+  const std::string& scene = report.scene_name.empty() ? report.scene_file : report.scene_name;
+  std::string line = report.verdict.empty() ? "UNKNOWN" : Uppercase(Printable(report.verdict));
+  line += "  " + (report.program_file.empty() ? "(no programme)" : Printable(report.program_file));
+  if (!scene.empty()) line += " on " + Printable(scene);
+  if (!report.head.empty()) line += " (" + Printable(report.head) + ")";
+  line += ": " + Count(report.errors, "error", "errors") + ", " +
+          Count(report.warnings, "warning", "warnings") + " in " +
+          Count(static_cast<long>(report.rules.size()), "rule", "rules") + "; " +
+          Count(report.stitches, "stitch", "stitches") + ", " +
+          Count(report.moves, "move", "moves") + ", cycle " + FormatFixed1(report.cycle_time_s) +
+          " s";
+  return line;
+}
+
+std::string LimitCell(const RuleSummary& rule) {
+  std::string cell =
+      rule.error_limit ? WithUnit(FormatNumber(*rule.error_limit), rule.unit) : std::string("-");
+  if (rule.warning_limit) cell += " (warn " + FormatNumber(*rule.warning_limit) + ")";
+  return cell;
+}
+
+// The table: one row of cells per rule under a header; numeric columns right-aligned.
+std::string Table(const std::vector<RuleSummary>& rules) {
+  enum Align { kLeft, kRight };
+  const std::array<Align, 7> align = {kLeft, kRight, kRight, kRight, kLeft, kLeft, kLeft};
+  std::vector<std::array<std::string, 7>> rows;
+  rows.push_back({"rule", "checked", "errors", "warnings", "worst", "at", "limit"});
+  for (const RuleSummary& rule : rules) {
+    const bool has_worst = rule.worst_value.has_value();
+    rows.push_back({Printable(rule.id), std::to_string(rule.checked), std::to_string(rule.errors),
+                    std::to_string(rule.warnings),
+                    has_worst ? WithUnit(FormatNumber(*rule.worst_value), rule.unit) : "-",
+                    has_worst ? Location(rule.worst_line, rule.worst_stitch) : "-",
+                    LimitCell(rule)});
+  }
+  std::array<std::size_t, 7> width{};
+  for (const auto& row : rows) {
+    for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], Columns(row[c]));
+  }
+  std::string out;
+  for (const auto& row : rows) {
+    std::string line = " ";
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      const std::string pad(width[c] - Columns(row[c]), ' ');
+      line += ' ';
+      line += align[c] == kRight ? pad + row[c] : row[c] + pad;
+      line += ' ';
+    }
+    line.erase(line.find_last_not_of(' ') + 1);
+    out += line + "\n";
+  }
+  return out;
+}
+
+// Up to kExamplesPerRule error findings of a failing rule, then how many more there are.
+std::string Examples(const RuleSummary& rule) {
+  std::string out = Printable(rule.id) + ": " + Count(rule.errors, "error", "errors") + "\n";
+  long shown = 0;
+  for (const Finding& finding : rule.findings) {
+    if (finding.severity != FindingSeverity::kError) continue;
+    if (shown == static_cast<long>(kExamplesPerRule)) break;
+    const std::string prefix = "  " + Location(finding.line, finding.stitch) + ": ";
+    const std::size_t room =
+        kTextColumns > Columns(prefix) + 20 ? kTextColumns - Columns(prefix) : std::size_t{20};
+    out += prefix + Shorten(Printable(finding.message), room) + "\n";
+    ++shown;
+  }
+  if (rule.errors > shown) out += "  ... and " + std::to_string(rule.errors - shown) + " more\n";
+  return out;
+}
+
+}  // namespace
+
+std::string ReportToText(const Report& report) {
+  std::string out = Headline(report) + "\n";
+  if (report.rules.empty()) return out + "\n  (no rules ran)\n";
+  out += "\n" + Table(report.rules);
+  for (const RuleSummary& rule : report.rules) {
+    if (rule.errors > 0) out += "\n" + Examples(rule);
+  }
+  return out;
+}
+
+}  // namespace stitchsim::verify

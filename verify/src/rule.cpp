@@ -1,0 +1,89 @@
+#include "stitchsim/verify/rule.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace stitchsim::verify {
+
+Rule::Rule(std::string id, std::string description, std::string unit) {
+  summary_.id = std::move(id);
+  summary_.description = std::move(description);
+  summary_.unit = std::move(unit);
+}
+
+std::optional<double> Rule::LimitOf(const RuleContext& ctx, const std::string& rule,
+                                    const std::string& key) {
+  const auto r = ctx.scene->limits.find(rule);
+  if (r == ctx.scene->limits.end()) return std::nullopt;
+  const auto k = r->second.find(key);
+  if (k == r->second.end()) return std::nullopt;
+  return k->second;
+}
+
+void Rule::Observe(double value, int line, long stitch, const sim::TraceSample* sample) {
+  if (!summary_.worst_value || value > *summary_.worst_value) {
+    summary_.worst_value = value;
+    summary_.worst_line = line;
+    summary_.worst_stitch = stitch;
+    if (sample != nullptr) worst_sample_ = *sample;
+  }
+}
+
+void Rule::Record(FindingSeverity severity, double value, double limit, int line, long stitch,
+                  const std::string& subject, std::string message,
+                  const sim::TraceSample* sample) {
+  if (severity == FindingSeverity::kError) {
+    ++summary_.errors;
+  } else {
+    ++summary_.warnings;
+  }
+  // The close-up goes to the worst error (or warning if there is no error).
+  const bool first_error = severity == FindingSeverity::kError && summary_.errors == 1;
+  if (sample != nullptr && (first_error || !worst_sample_)) worst_sample_ = *sample;
+  if (summary_.findings.size() >= kMaxFindingsPerRule) {
+    summary_.truncated = true;
+    return;
+  }
+  Finding f;
+  f.rule = summary_.id;
+  f.severity = severity;
+  f.line = line;
+  f.stitch = stitch;
+  f.value = value;
+  f.limit = limit;
+  f.unit = summary_.unit;
+  f.subject = subject;
+  f.message = std::move(message);
+  summary_.findings.push_back(std::move(f));
+}
+
+std::optional<FindingSeverity> Rule::CheckUpper(double value, int line, long stitch,
+                                                const std::string& subject,
+                                                const std::string& what,
+                                                const sim::TraceSample* sample) {
+  ++summary_.checked;
+  const bool new_worst = !summary_.worst_value || value > *summary_.worst_value;
+  Observe(value, line, stitch, nullptr);
+  std::optional<FindingSeverity> sev;
+  double limit = 0.0;
+  if (summary_.error_limit && value > *summary_.error_limit) {
+    sev = FindingSeverity::kError;
+    limit = *summary_.error_limit;
+  } else if (summary_.warning_limit && value > *summary_.warning_limit) {
+    sev = FindingSeverity::kWarning;
+    limit = *summary_.warning_limit;
+  }
+  if (sev) {
+    char buf[256];
+    std::snprintf(buf, sizeof(buf), "%s %.4g %s exceeds the %s limit of %.4g %s", what.c_str(),
+                  value, summary_.unit.c_str(),
+                  *sev == FindingSeverity::kError ? "error" : "warning", limit,
+                  summary_.unit.c_str());
+    Record(*sev, value, limit, line, stitch, subject, buf, nullptr);
+  }
+  // Keep the snapshot at the worst offending sample.
+  if (sample != nullptr && new_worst && (sev || !worst_sample_)) worst_sample_ = *sample;
+  return sev;
+}
+
+}  // namespace stitchsim::verify

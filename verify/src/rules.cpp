@@ -1,0 +1,475 @@
+// The rules. Each is a small class; MakeRules at the bottom is the registry.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "stitchsim/geom/rotation.h"
+#include "stitchsim/verify/rule.h"
+
+namespace stitchsim::verify {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+std::string Fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
+  char buf[256];
+  std::snprintf(buf, sizeof(buf), format, a, b, c);
+  return buf;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Needle rules (the process model's window metrics).
+
+class RotationInPreformRule final : public Rule {
+ public:
+  explicit RotationInPreformRule(const RuleContext& ctx)
+      : Rule("needle.rotation_in_preform",
+             "head rotation about tool x, y, z and in total while the needles are in the preform",
+             "deg") {
+    const char* keys[4] = {"x_error_deg", "y_error_deg", "z_error_deg", "total_error_deg"};
+    for (int i = 0; i < 4; ++i) limit_deg_[i] = LimitOf(ctx, summary_.id, keys[i]);
+    summary_.error_limit = limit_deg_[2] ? limit_deg_[2] : limit_deg_[3];
+  }
+  void OnWindow(const WindowRecord& w) override {
+    Counted();
+    static const char* names[4] = {"about x", "about y", "about z", "total"};
+    double values[4];
+    for (int i = 0; i < 3; ++i) values[i] = w.metrics.rotation_rad[i] * kRadToDeg;
+    values[3] = w.metrics.rotation_total_rad * kRadToDeg;
+    double worst = 0.0;
+    for (int i = 0; i < 4; ++i) worst = std::max(worst, values[i]);
+    Observe(worst, w.exit_line, w.stitch, &w.exit_sample);
+    for (int i = 0; i < 4; ++i) {
+      if (limit_deg_[i] && values[i] > *limit_deg_[i]) {
+        Record(FindingSeverity::kError, values[i], *limit_deg_[i], w.exit_line, w.stitch, names[i],
+               "head rotated " + Fmt("%.3g", values[i]) + " deg (" + names[i] +
+                   ") while the needles were in the preform; limit " +
+                   Fmt("%.3g", *limit_deg_[i]) + " deg",
+               &w.exit_sample);
+        break;
+      }
+    }
+  }
+
+ private:
+  std::optional<double> limit_deg_[4];
+};
+
+class SideForceRule final : public Rule {
+ public:
+  explicit SideForceRule(const RuleContext& ctx)
+      : Rule("needle.side_force",
+             "side-force proxy per needle: lateral drift of the shaft inside the preform from its "
+             "entry, after the walk",
+             "mm"),
+        ctx_(ctx) {
+    summary_.error_limit = LimitOf(ctx, summary_.id, "error_mm");
+    summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_mm");
+    stiffness_ = LimitOf(ctx, summary_.id, "stiffness_n_per_mm");
+  }
+  void OnWindow(const WindowRecord& w) override {
+    const auto& needles = ctx_.process->needles;
+    for (std::size_t k = 0; k < needles.size(); ++k) {
+      const double v = w.metrics.side_force_mm[k];
+      std::string what = "side-force proxy on the " + needles[k].name + " needle";
+      if (stiffness_) what += Fmt(" (about %.3g N)", v * *stiffness_);
+      CheckUpper(v, w.exit_line, w.stitch, needles[k].name, what, &w.exit_sample);
+    }
+  }
+
+ private:
+  const RuleContext& ctx_;
+  std::optional<double> stiffness_;
+};
+
+class WalkRule final : public Rule {
+ public:
+  explicit WalkRule(const RuleContext& ctx)
+      : Rule("needle.walk", "needle walk the motion asks for, against the walk capacity", "mm") {
+    summary_.error_limit = LimitOf(ctx, summary_.id, "error_mm");
+    if (!summary_.error_limit) summary_.error_limit = ctx.process->walk_capacity_mm;
+    summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_mm");
+  }
+  void OnWindow(const WindowRecord& w) override {
+    CheckUpper(w.metrics.walk_demand_mm, w.exit_line, w.stitch, "walk", "walk demand",
+               &w.exit_sample);
+  }
+};
+
+// ---------------------------------------------------------------------------------------------
+// Stitch formation (where the needles pierce the surface).
+
+class StitchLengthRule final : public Rule {
+ public:
+  explicit StitchLengthRule(const RuleContext& ctx)
+      : Rule("stitch.length",
+             "stitch length on the surface per needle against the programme's stitch length "
+             "(limits apply to the needle at the tool point; insertion limits if given)",
+             "%"),
+        ctx_(ctx) {
+    summary_.error_limit = LimitOf(ctx, summary_.id, "error_pct");
+    summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_pct");
+    insertion_error_ = LimitOf(ctx, summary_.id, "insertion_error_pct");
+    insertion_warning_ = LimitOf(ctx, summary_.id, "insertion_warning_pct");
+  }
+  void OnPenetration(const PenetrationRecord& p) override {
+    const auto& needles = ctx_.process->needles;
+    if (previous_ && previous_->stitch == p.stitch - 1) {
+      const double l = ctx_.process->stitch_length_mm;
+      for (std::size_t k = 0; k < needles.size(); ++k) {
+        if (!p.points[k] || !previous_->points[k]) continue;
+        const double len = (*p.points[k] - *previous_->points[k]).norm();
+        const double dev = std::abs(len - l) / l * 100.0;
+        // Stitch k-1 ends where stitch k starts: report it on the earlier stitch.
+        const bool at_tool_point = needles[k].through_mm.norm() < 1e-9;
+        if (at_tool_point) {
+          CheckUpper(dev, p.line, p.stitch - 1, needles[k].name,
+                     needles[k].name + " needle stitch of " + Fmt("%.4g", len) +
+                         " mm: deviation",
+                     &p.sample);
+        } else {
+          Counted();
+          Observe(dev, p.line, p.stitch - 1, nullptr);
+          const std::optional<double>* lim[2] = {&insertion_error_, &insertion_warning_};
+          for (int s = 0; s < 2; ++s) {
+            if (*lim[s] && dev > **lim[s]) {
+              Record(s == 0 ? FindingSeverity::kError : FindingSeverity::kWarning, dev, **lim[s],
+                     p.line, p.stitch - 1, needles[k].name,
+                     Fmt("insertion needle stitch of %.4g mm deviates %.3g %% from %.4g mm", len,
+                         dev, l),
+                     &p.sample);
+              break;
+            }
+          }
+        }
+      }
+    }
+    previous_ = p;
+  }
+
+ private:
+  const RuleContext& ctx_;
+  std::optional<PenetrationRecord> previous_;
+  std::optional<double> insertion_error_, insertion_warning_;
+};
+
+class StitchWidthRule final : public Rule {
+ public:
+  explicit StitchWidthRule(const RuleContext& ctx)
+      : Rule("stitch.width",
+             "spacing of the insertion and catcher penetrations on the surface against nominal",
+             "%"),
+        ctx_(ctx) {
+    summary_.error_limit = LimitOf(ctx, summary_.id, "error_pct");
+    summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_pct");
+  }
+  void OnPenetration(const PenetrationRecord& p) override {
+    const double nominal = ctx_.process->nominal_width_mm;
+    if (p.points.size() < 2 || nominal <= 0) return;
+    if (!p.points[0] || !p.points[1]) return;
+    const double width = (*p.points[1] - *p.points[0]).norm();
+    const double dev = (width - nominal) / nominal * 100.0;
+    CheckUpper(std::abs(dev), p.line, p.stitch, "width",
+               Fmt("stitch width %.4g mm (%+.3g %% from nominal); deviation", width, dev),
+               &p.sample);
+  }
+
+ private:
+  const RuleContext& ctx_;
+};
+
+class StandoffRule final : public Rule {
+ public:
+  explicit StandoffRule(const RuleContext& ctx)
+      : Rule("stitch.standoff", "tool point distance from the stitching surface at needle entry",
+             "mm") {
+    summary_.error_limit = LimitOf(ctx, summary_.id, "error_mm");
+    summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_mm");
+  }
+  void OnPenetration(const PenetrationRecord& p) override {
+    const double d = p.foot.signed_distance_mm;
+    CheckUpper(std::abs(d), p.line, p.stitch, "tool point",
+               std::string("tool point ") + (d < 0 ? "below" : "above") +
+                   " the stitching surface; standoff",
+               &p.sample);
+  }
+};
+
+class NormalityRule final : public Rule {
+ public:
+  explicit NormalityRule(const RuleContext& ctx)
+      : Rule("stitch.normality", "angle between the head z axis and the surface normal at needle "
+                                 "entry",
+             "deg") {
+    summary_.error_limit = LimitOf(ctx, summary_.id, "error_deg");
+    summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_deg");
+  }
+  void OnPenetration(const PenetrationRecord& p) override {
+    const double c = std::clamp(p.tool.linear().col(2).dot(p.foot.normal), -1.0, 1.0);
+    CheckUpper(std::acos(c) * kRadToDeg, p.line, p.stitch, "head z", "head tilt from the normal",
+               &p.sample);
+  }
+};
+
+// ---------------------------------------------------------------------------------------------
+// Kinematics (IK status of the solved samples).
+
+class IkStatusRule : public Rule {
+ public:
+  IkStatusRule(std::string id, std::string description, std::string unit, sim::IkStatus status)
+      : Rule(std::move(id), std::move(description), std::move(unit)), status_(status) {}
+  void OnSample(const sim::TraceSample& s) override {
+    if (!s.has_joints) return;
+    Counted();
+    if (s.ik_status != status_) return;
+    // One finding per line: a line out of reach is one mistake, not one per sample.
+    if (s.source_line == last_line_) return;
+    last_line_ = s.source_line;
+    const double v = Value(s);
+    Observe(v, s.source_line, s.stitch, &s);
+    Record(FindingSeverity::kError, v, Limit(), s.source_line, s.stitch, Subject(s), Message(s),
+           &s);
+  }
+
+ protected:
+  virtual double Value(const sim::TraceSample&) const { return 1.0; }
+  virtual double Limit() const { return 0.0; }
+  virtual std::string Subject(const sim::TraceSample&) const { return "arm"; }
+  virtual std::string Message(const sim::TraceSample& s) const = 0;
+
+ private:
+  sim::IkStatus status_;
+  int last_line_ = -1;
+};
+
+std::string PoseText(const sim::TraceSample& s) {
+  const Eigen::Vector3d p = s.tool_part.translation();
+  return Fmt("tool point (%.2f, %.2f, %.2f) mm", p.x(), p.y(), p.z());
+}
+
+class ReachRule final : public IkStatusRule {
+ public:
+  ReachRule()
+      : IkStatusRule("kin.reach", "tool poses the arm cannot reach from the rail", "",
+                     sim::IkStatus::kUnreachable) {}
+  std::string Message(const sim::TraceSample& s) const override {
+    return PoseText(s) + " is out of the arm's reach (rail at " +
+           Fmt("%.0f mm)", s.joints[sim::kRailX] * 1000.0);
+  }
+};
+
+class JointLimitRule final : public IkStatusRule {
+ public:
+  explicit JointLimitRule(const RuleContext& ctx)
+      : IkStatusRule("kin.joint_limit", "joints beyond their URDF limits (deg, rail mm)", "deg",
+                     sim::IkStatus::kJointLimit),
+        robot_(ctx.robot) {}
+  double Value(const sim::TraceSample& s) const override { return Excess(s).first; }
+  std::string Subject(const sim::TraceSample& s) const override {
+    return std::string(sim::kJointNames[static_cast<std::size_t>(Excess(s).second)]);
+  }
+  std::string Message(const sim::TraceSample& s) const override {
+    const auto [v, j] = Excess(s);
+    return PoseText(s) + " needs joint " +
+           std::string(sim::kJointNames[static_cast<std::size_t>(j)]) + " " + Fmt("%.3g", v) +
+           (j == sim::kRailX ? " mm" : " deg") + " beyond its limit";
+  }
+
+ private:
+  std::pair<double, int> Excess(const sim::TraceSample& s) const {
+    double worst = 0.0;
+    int joint = sim::kA1;
+    for (int j = 0; j < sim::kNumJoints; ++j) {
+      const double lo = robot_->lower_limits()[j], hi = robot_->upper_limits()[j];
+      double e = std::max(lo - s.joints[j], s.joints[j] - hi);
+      e *= j == sim::kRailX ? 1000.0 : kRadToDeg;
+      if (e > worst) {
+        worst = e;
+        joint = j;
+      }
+    }
+    return {worst, joint};
+  }
+  const sim::RobotModel* robot_;
+};
+
+class SingularityRule final : public IkStatusRule {
+ public:
+  explicit SingularityRule(const RuleContext& ctx)
+      : IkStatusRule("kin.singularity", "wrist (a5 near 0) or shoulder singular poses", "deg",
+                     sim::IkStatus::kWristSingularity),
+        a5_min_deg_(LimitOf(ctx, "kin.singularity", "a5_min_deg").value_or(1.0)) {
+    summary_.error_limit = a5_min_deg_;
+  }
+  void OnSample(const sim::TraceSample& s) override {
+    if (s.has_joints && s.ik_status == sim::IkStatus::kShoulderSingularity) {
+      Record(FindingSeverity::kError, 0.0, 0.0, s.source_line, s.stitch, "shoulder",
+             PoseText(s) + " puts the wrist centre on the a1 axis (shoulder singularity)", &s);
+    }
+    IkStatusRule::OnSample(s);
+  }
+  double Value(const sim::TraceSample& s) const override {
+    return std::abs(s.joints[sim::kA5]) * kRadToDeg;
+  }
+  double Limit() const override { return a5_min_deg_; }
+  std::string Subject(const sim::TraceSample&) const override { return "a5"; }
+  std::string Message(const sim::TraceSample& s) const override {
+    return PoseText(s) + Fmt(" puts a5 at %.3g deg, inside the %.3g deg wrist singularity band",
+                             Value(s), a5_min_deg_);
+  }
+
+ private:
+  double a5_min_deg_;
+};
+
+class ConfigFlipRule final : public IkStatusRule {
+ public:
+  ConfigFlipRule()
+      : IkStatusRule("kin.config_flip",
+                     "arm configuration (shoulder/elbow/wrist) changes between consecutive poses",
+                     "", sim::IkStatus::kConfigFlip) {}
+  std::string Message(const sim::TraceSample& s) const override {
+    return PoseText(s) + " is reachable only by flipping the arm configuration to " +
+           sim::ToString(s.configuration);
+  }
+};
+
+class JointSpeedRule final : public Rule {
+ public:
+  explicit JointSpeedRule(const RuleContext& ctx)
+      : Rule("kin.joint_speed", "joint speed at the programmed feed against the URDF maximum",
+             "%"),
+        robot_(ctx.robot) {
+    summary_.error_limit = 100.0 * LimitOf(ctx, summary_.id, "max_fraction").value_or(1.0);
+    summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_pct");
+  }
+  void OnSample(const sim::TraceSample& s) override {
+    if (!s.has_joints) return;
+    const bool usable = s.ik_status != sim::IkStatus::kUnreachable &&
+                        s.ik_status != sim::IkStatus::kJointLimit;
+    if (have_ && usable) {
+      const double dt = s.time_s - time_;
+      if (dt > 1e-9) {
+        double worst = 0.0;
+        int joint = 0;
+        for (int j = 0; j < sim::kNumJoints; ++j) {
+          const double pct = std::abs(s.joints[j] - q_[j]) / dt / robot_->max_velocities()[j] * 100.0;
+          if (pct > worst) {
+            worst = pct;
+            joint = j;
+          }
+        }
+        CheckUpper(worst, s.source_line, s.stitch,
+                   std::string(sim::kJointNames[static_cast<std::size_t>(joint)]),
+                   "joint " + std::string(sim::kJointNames[static_cast<std::size_t>(joint)]) +
+                       " speed (of its maximum)",
+                   &s);
+      }
+    }
+    if (usable) {
+      q_ = s.joints;
+      time_ = s.time_s;
+      have_ = true;
+    }
+  }
+
+ private:
+  const sim::RobotModel* robot_;
+  sim::JointVector q_ = sim::JointVector::Zero();
+  double time_ = 0.0;
+  bool have_ = false;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Programme bookkeeping.
+
+class SyncRule final : public Rule {
+ public:
+  explicit SyncRule(const RuleContext& ctx)
+      : Rule("program.sync",
+             "U (drive) and V (path length) consistent with each other and with the tool travel",
+             "mm") {
+    summary_.error_limit = LimitOf(ctx, summary_.id, "error_mm").value_or(0.01);
+    // A chord is shorter than its arc: V may exceed the straight travel by this fraction.
+    sag_fraction_ = LimitOf(ctx, summary_.id, "chord_allowance_pct").value_or(2.0) / 100.0;
+  }
+  void OnLine(const sim::LineRecord& l) override {
+    Counted();
+    const double tol = *summary_.error_limit;
+    const double du = l.drive_to_mm - l.drive_from_mm;
+    const double dv = l.path_to_mm - l.path_from_mm;
+    const double travel = (l.to.translation() - l.from.translation()).norm();
+    auto flag = [&](double value, const std::string& subject, const std::string& msg) {
+      Observe(value, l.source_line, 0, nullptr);
+      Record(FindingSeverity::kError, value, tol, l.source_line, 0, subject, msg, nullptr);
+    };
+    if (dv < -tol) {
+      flag(-dv, "V", Fmt("the path length V goes back by %.4g mm", -dv));
+      return;
+    }
+    if (du > tol && std::abs(du - dv) > tol) {
+      flag(std::abs(du - dv), "U-V",
+           Fmt("the drive advances %.4g mm but the path length %.4g mm", du, dv));
+      return;
+    }
+    if (dv > tol || (du > tol && travel > tol) || (du > tol && travel <= tol)) {
+      const double excess = dv - travel;
+      if (excess < -tol || excess > tol + sag_fraction_ * dv) {
+        flag(std::abs(excess), "V-travel",
+             Fmt("the path length advances %.4g mm but the tool point travels %.4g mm", dv,
+                 travel));
+        return;
+      }
+    }
+    Observe(std::abs(du - dv), l.source_line, 0, nullptr);
+  }
+
+ private:
+  double sag_fraction_ = 0.02;
+};
+
+class EmptyProgramRule final : public Rule {
+ public:
+  EmptyProgramRule() : Rule("program.empty", "a programme that makes no stitch never passes", "") {}
+  void OnSample(const sim::TraceSample& s) override {
+    if (s.event == sim::SampleEvent::kNeedleEntry) ++stitches_;
+  }
+  void Finish(const RuleContext&) override {
+    Counted();
+    if (stitches_ == 0) {
+      Record(FindingSeverity::kError, 0.0, 1.0, 0, 0, "programme",
+             "the programme makes no stitch (no line advances the drive axis U through a "
+             "needle cycle)",
+             nullptr);
+    }
+  }
+
+ private:
+  long stitches_ = 0;
+};
+
+}  // namespace
+
+std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
+  std::vector<std::unique_ptr<Rule>> rules;
+  const bool stitching = ctx.scene->head.IsStitching();
+  if (stitching) {
+    rules.push_back(std::make_unique<RotationInPreformRule>(ctx));
+    rules.push_back(std::make_unique<SideForceRule>(ctx));
+    rules.push_back(std::make_unique<WalkRule>(ctx));
+    rules.push_back(std::make_unique<StitchLengthRule>(ctx));
+    if (ctx.process->needles.size() >= 2) rules.push_back(std::make_unique<StitchWidthRule>(ctx));
+    rules.push_back(std::make_unique<StandoffRule>(ctx));
+    rules.push_back(std::make_unique<NormalityRule>(ctx));
+  }
+  rules.push_back(std::make_unique<ReachRule>());
+  rules.push_back(std::make_unique<JointLimitRule>(ctx));
+  rules.push_back(std::make_unique<SingularityRule>(ctx));
+  rules.push_back(std::make_unique<ConfigFlipRule>());
+  rules.push_back(std::make_unique<JointSpeedRule>(ctx));
+  rules.push_back(std::make_unique<SyncRule>(ctx));
+  if (stitching) rules.push_back(std::make_unique<EmptyProgramRule>());
+  return rules;
+}
+
+}  // namespace stitchsim::verify

@@ -1,0 +1,111 @@
+#include "stitchsim/verify/verifier.h"
+
+#include <algorithm>
+
+namespace stitchsim::verify {
+
+Verifier::Verifier(const RuleContext& ctx, bool keep_stitch_marks)
+    : ctx_(ctx), rules_(MakeRules(ctx)), window_(*ctx.process), keep_marks_(keep_stitch_marks) {}
+
+namespace {
+
+std::pair<long, long> Totals(const std::vector<std::unique_ptr<Rule>>& rules) {
+  long e = 0, w = 0;
+  for (const auto& r : rules) {
+    e += r->Summary().errors;
+    w += r->Summary().warnings;
+  }
+  return {e, w};
+}
+
+}  // namespace
+
+void Verifier::MarkStitch(long stitch, std::size_t errors_before, std::size_t warnings_before) {
+  if (!keep_marks_ || stitch <= 0 || marks_.empty()) return;
+  const auto [e, w] = Totals(rules_);
+  std::uint8_t sev = 0;
+  if (static_cast<std::size_t>(e) > errors_before) {
+    sev = 2;
+  } else if (static_cast<std::size_t>(w) > warnings_before) {
+    sev = 1;
+  }
+  const std::size_t idx = static_cast<std::size_t>(stitch - 1);
+  if (idx < marks_.size()) marks_[idx].severity = std::max(marks_[idx].severity, sev);
+}
+
+void Verifier::OnLine(const sim::LineRecord& line) {
+  for (auto& r : rules_) r->OnLine(line);
+}
+
+void Verifier::OnSample(const sim::TraceSample& s) {
+  const auto [e0, w0] = Totals(rules_);
+  for (auto& r : rules_) r->OnSample(s);
+  MarkStitch(s.stitch, static_cast<std::size_t>(e0), static_cast<std::size_t>(w0));
+
+  if (s.event == sim::SampleEvent::kNeedleEntry) {
+    if (window_.Active()) CloseWindow();
+    ++stitches_;
+    window_.Enter(s.tool_part);
+    window_stitch_ = s.stitch;
+    window_entry_line_ = s.source_line;
+    last_in_sample_ = s;
+    if (keep_marks_) {
+      // Stitches are numbered by the drive; keep the vector indexable by stitch number.
+      const std::size_t idx = static_cast<std::size_t>(std::max(0L, s.stitch - 1));
+      if (marks_.size() <= idx) marks_.resize(idx + 1);
+      marks_[idx].position_mm = s.tool_part.translation().cast<float>();
+    }
+    PenetrationRecord p;
+    p.stitch = s.stitch;
+    p.line = s.source_line;
+    p.tool = s.tool_part;
+    p.points = process::PenetrationPoints(*ctx_.process, *ctx_.scene->surface, s.tool_part);
+    p.foot = ctx_.scene->surface->Project(s.tool_part.translation());
+    p.sample = s;
+    const auto [e1, w1] = Totals(rules_);
+    for (auto& r : rules_) r->OnPenetration(p);
+    MarkStitch(s.stitch, static_cast<std::size_t>(e1), static_cast<std::size_t>(w1));
+    return;
+  }
+  if (!window_.Active()) return;
+  if (s.needles_in) {
+    window_.Update(s.tool_part);
+    last_in_sample_ = s;
+    if (s.event == sim::SampleEvent::kNeedleExit) CloseWindow();
+  } else {
+    CloseWindow();
+  }
+}
+
+void Verifier::CloseWindow() {
+  WindowRecord w;
+  w.stitch = window_stitch_;
+  w.entry_line = window_entry_line_;
+  w.exit_line = last_in_sample_.source_line;
+  w.metrics = window_.Metrics();
+  w.exit_sample = last_in_sample_;
+  window_ = process::NeedleWindow(*ctx_.process);
+  const auto [e0, w0] = Totals(rules_);
+  for (auto& r : rules_) r->OnWindow(w);
+  MarkStitch(w.stitch, static_cast<std::size_t>(e0), static_cast<std::size_t>(w0));
+}
+
+void Verifier::Finish(Report& report) {
+  if (window_.Active()) CloseWindow();
+  for (auto& r : rules_) r->Finish(ctx_);
+  report.rules.clear();
+  report.errors = 0;
+  report.warnings = 0;
+  for (const auto& r : rules_) {
+    RuleSummary s = r->Summary();
+    std::stable_sort(s.findings.begin(), s.findings.end(),
+                     [](const Finding& a, const Finding& b) { return a.line < b.line; });
+    report.errors += s.errors;
+    report.warnings += s.warnings;
+    report.rules.push_back(std::move(s));
+  }
+  report.stitches = stitches_;
+  report.verdict = report.errors == 0 ? "pass" : "fail";
+}
+
+}  // namespace stitchsim::verify
