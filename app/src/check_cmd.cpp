@@ -1,7 +1,6 @@
 // `stitchsim check`: parses a programme and tracks its modal state, streaming, and reports
 // every problem as file:line:col: error[code]: message. Exit 0 when clean, 2 otherwise.
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -65,7 +64,8 @@ int RunCheck(const CheckArgs& a) {
 
   std::string header;
   for (const char* key : {"scene", "head", "path", "mode"}) {
-    if (auto v = summary.header.Find(key)) header += std::string(", ") + key + " " + std::string(*v);
+    if (auto v = summary.header.Find(key))
+      header += std::string(", ") + key + " " + std::string(*v);
   }
   std::printf("%s: ok: %d lines, %llu blocks, %llu moves%s\n", a.program.c_str(), summary.lines,
               static_cast<unsigned long long>(summary.blocks),

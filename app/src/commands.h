@@ -3,7 +3,6 @@
 // its exit code into `exit_code` when it runs.
 
 #include <CLI/CLI.hpp>
-
 #include <Eigen/Geometry>
 #include <array>
 #include <optional>
@@ -36,7 +35,7 @@ struct RenderRequest {
   std::string output;
   int width = 1280;
   int height = 960;
-  std::string view = "overview";
+  std::string view = "overview";  ///< overview | head | part (the stitches, from above)
   std::string coverage_json;  ///< if set, write per-class pixel counts here
   sim::JointVector joints = sim::JointVector::Zero();
   Eigen::Isometry3d tool_world_m = Eigen::Isometry3d::Identity();
@@ -46,6 +45,7 @@ struct RenderRequest {
     std::vector<Eigen::Vector3d> points_part_mm;
     std::array<float, 4> rgba = {0.1f, 0.9f, 0.2f, 1.0f};
     double radius_scale = 1.0;
+    bool polyline = false;  ///< connect the points (else one sphere each)
   };
   std::vector<PointSet> point_sets;
 };

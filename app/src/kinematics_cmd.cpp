@@ -2,7 +2,6 @@
 // cell. Joints in model order [rail_x mm, a1..a6 deg, rotator deg]; tool poses in the part
 // frame in the dialect's convention (X Y Z mm, A B C deg, R = Rz(C) Ry(B) Rx(A)).
 #include <CLI/CLI.hpp>
-
 #include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -24,7 +23,8 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kRadToDeg = 180.0 / kPi;
 constexpr double kDegToRad = kPi / 180.0;
 
-using nlohmann::json;
+// Keys in the order written: status first, details after.
+using json = nlohmann::ordered_json;
 
 geom::EulerOrder DialectEulerOrder() {
   return geom::ParseEulerOrder(program::Dialect::Default().euler_order)
@@ -65,8 +65,8 @@ std::vector<double> JointsForCli(const sim::JointVector& q) {
 // A pose as the dialect writes it: translation (mm if `pose` is in mm) and A B C degrees.
 json PoseJson(const Eigen::Isometry3d& pose, double length_scale) {
   const Eigen::Vector3d t = pose.translation() * length_scale;
-  const Eigen::Vector3d abc = geom::EulerFromRotation(DialectEulerOrder(), pose.linear()) *
-                              kRadToDeg;
+  const Eigen::Vector3d abc =
+      geom::EulerFromRotation(DialectEulerOrder(), pose.linear()) * kRadToDeg;
   return {{"xyz_mm", {t.x(), t.y(), t.z()}}, {"abc_deg", {abc.x(), abc.y(), abc.z()}}};
 }
 
@@ -80,8 +80,8 @@ json LimitsJson(const sim::RobotModel& robot, const sim::JointVector& q, double 
   const std::vector<double> upper = JointsForCli(robot.upper_limits());
   for (int j = 0; j < sim::kNumJoints; ++j) {
     const auto i = static_cast<std::size_t>(j);
-    const bool within = q[j] >= robot.lower_limits()[j] - tolerance &&
-                        q[j] <= robot.upper_limits()[j] + tolerance;
+    const bool within =
+        q[j] >= robot.lower_limits()[j] - tolerance && q[j] <= robot.upper_limits()[j] + tolerance;
     all_within = all_within && within;
     out.push_back({{"name", std::string(sim::kJointNames[i])},
                    {"unit", j == sim::kRailX ? "mm" : "deg"},
@@ -106,8 +106,10 @@ struct FkArgs {
 
 int RunFk(const FkArgs& a) {
   if (a.joints.size() != static_cast<std::size_t>(sim::kNumJoints) || !AllFinite(a.joints)) {
-    PrintError("kin-bad-joints", "--joints needs 8 finite numbers (rail_x mm, a1..a6 deg, "
-                                 "rotator deg); got: " + JoinNumbers(a.joints));
+    PrintError("kin-bad-joints",
+               "--joints needs 8 finite numbers (rail_x mm, a1..a6 deg, "
+               "rotator deg); got: " +
+                   JoinNumbers(a.joints));
     return kExitBadInput;
   }
   auto ls = LoadSceneAndRobot(a.scene);
@@ -141,8 +143,8 @@ struct IkArgs {
 
 int RunIk(const IkArgs& a) {
   if (a.pose.size() != 6 || !AllFinite(a.pose)) {
-    PrintError("kin-bad-pose", "--pose needs 6 finite numbers (X Y Z mm, A B C deg); got: " +
-                                   JoinNumbers(a.pose));
+    PrintError("kin-bad-pose",
+               "--pose needs 6 finite numbers (X Y Z mm, A B C deg); got: " + JoinNumbers(a.pose));
     return kExitBadInput;
   }
   if ((a.rail_mm && !std::isfinite(*a.rail_mm)) || !std::isfinite(a.rotator_deg)) {
@@ -204,8 +206,7 @@ void AddKinematicsCommands(CLI::App& app, int& exit_code) {
     auto args = std::make_shared<FkArgs>();
     CLI::App* cmd = app.add_subcommand(
         "fk", "Forward kinematics: flange and tool-point pose for joint values (JSON)");
-    cmd->add_option("--scene", args->scene, "Scene YAML file (cell, head, part mount)")
-        ->required();
+    cmd->add_option("--scene", args->scene, "Scene YAML file (cell, head, part mount)")->required();
     cmd->add_option("--joints", args->joints,
                     "rail_x (mm), a1..a6 (deg), rotator (deg), in model order")
         ->required()
@@ -218,8 +219,7 @@ void AddKinematicsCommands(CLI::App& app, int& exit_code) {
         "ik",
         "Inverse kinematics: rail and joints for a tool-point pose in the part frame (JSON); "
         "exit 1 when the cell cannot reach it");
-    cmd->add_option("--scene", args->scene, "Scene YAML file (cell, head, part mount)")
-        ->required();
+    cmd->add_option("--scene", args->scene, "Scene YAML file (cell, head, part mount)")->required();
     cmd->add_option("--pose", args->pose, "X Y Z (mm) A B C (deg), part frame, dialect angles")
         ->required()
         ->expected(6);

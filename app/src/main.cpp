@@ -1,7 +1,6 @@
 // stitchsim: plan, execute and verify composite stitching / fiber placement programmes on an
 // ISAAC-like cell. Exit codes: 0 success / pass, 1 findings, 2 bad input.
 #include <CLI/CLI.hpp>
-
 #include <iostream>
 
 #include "commands.h"

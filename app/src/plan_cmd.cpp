@@ -1,15 +1,25 @@
 // `stitchsim plan stitch`: writes the stitching programme of one path of a scene.
+// `stitchsim plan afp`: writes the programme of one fibre-placement course (docs/afp.md).
 #include <CLI/CLI.hpp>
-
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
 #include "cli_common.h"
 #include "commands.h"
 #include "stitchsim/common/files.h"
+#include "stitchsim/geom/rotation.h"
+#include "stitchsim/planner/afp_planner.h"
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/program/dialect.h"
+#include "stitchsim/program/modal_state.h"
+#include "stitchsim/program/reader.h"
+#include "stitchsim/sim/cell.h"
+#ifdef STITCHSIM_HAVE_COLLISION
+#include "stitchsim/sim/collision.h"
+#endif
 
 namespace stitchsim::app {
 namespace {
@@ -30,8 +40,8 @@ int RunPlanStitch(const PlanStitchArgs& a) {
   if (path == nullptr) {
     std::string names;
     for (const auto& p : scene->paths) names += (names.empty() ? "" : ", ") + p.name;
-    PrintError("plan-unknown-path", a.scene + ": no path named '" + a.path + "' (paths: " +
-                                        names + ")");
+    PrintError("plan-unknown-path",
+               a.scene + ": no path named '" + a.path + "' (paths: " + names + ")");
     return kExitBadInput;
   }
   planner::StitchPlanOptions options;
@@ -53,10 +63,220 @@ int RunPlanStitch(const PlanStitchArgs& a) {
       "(stitching %.1f s, rotation and settle %.1f s) -> %s\n",
       scene->name.c_str(), path->name.c_str(), scene->head.name.c_str(),
       std::string(planner::ToString(s.mode)).c_str(), s.stitches, s.stitch_length_mm,
-      options.nominal_stitch_length_mm.value_or(scene->nominal_stitch_length_mm),
-      s.path_length_mm, s.decoupled, s.stitches - s.decoupled, s.motion_lines, s.time.Total(),
-      s.time.stitching_s, s.time.rotation_s, a.output.c_str());
+      options.nominal_stitch_length_mm.value_or(scene->nominal_stitch_length_mm), s.path_length_mm,
+      s.decoupled, s.stitches - s.decoupled, s.motion_lines, s.time.Total(), s.time.stitching_s,
+      s.time.rotation_s, a.output.c_str());
   return kExitOk;
+}
+
+// ---- plan afp ------------------------------------------------------------------------------
+
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+
+struct PlanAfpArgs {
+  std::string scene;
+  std::string path;
+  double lay_angle_deg = std::nan("");  ///< NaN: not given
+  std::string incline = "0";            ///< degrees, or "auto"
+  double incline_max_deg = 30.0;
+  double incline_step_deg = 1.0;
+  double point_spacing_mm = 5.0;
+  std::string output;
+  std::string csv;
+};
+
+std::string Deg(double rad) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.3f", rad / kDegToRad);
+  return buf;
+}
+
+/// Writes the programme (and the CSV), prints the summary and the over-travel findings.
+int WriteAfpOutputs(const scene::Scene& scene, const planner::AfpPlan& plan, const PlanAfpArgs& a) {
+  std::ostringstream text;
+  planner::WriteAfpProgram(plan, scene, program::Dialect::Default(), text);
+  if (std::string err = WriteFileAtomically(a.output, text.str()); !err.empty()) {
+    PrintError("io-write", err);
+    return kExitBadInput;
+  }
+  if (!a.csv.empty()) {
+    std::ostringstream csv;
+    planner::WriteAfpCsv(plan, csv);
+    if (std::string err = WriteFileAtomically(a.csv, csv.str()); !err.empty()) {
+      PrintError("io-write", err);
+      return kExitBadInput;
+    }
+  }
+  const auto& l = plan.limits;
+  std::printf(
+      "%s: AFP course '%s' on %s, incline %s deg: %zu points over %.3f mm; "
+      "B %s..%s deg (travel %s deg, limits %s..%s), C %s..%s deg (travel %s deg, limits "
+      "%s..%s), largest C step %s deg -> %s%s%s\n",
+      scene.name.c_str(), plan.course_name.c_str(), scene.head.name.c_str(),
+      Deg(plan.incline_rad).c_str(), plan.points.size(), plan.length_mm,
+      Deg(plan.b_min_rad).c_str(), Deg(plan.b_max_rad).c_str(),
+      Deg(plan.b_max_rad - plan.b_min_rad).c_str(), Deg(l.b_min_rad).c_str(),
+      Deg(l.b_max_rad).c_str(), Deg(plan.c_min_rad).c_str(), Deg(plan.c_max_rad).c_str(),
+      Deg(plan.c_max_rad - plan.c_min_rad).c_str(), Deg(l.c_min_rad).c_str(),
+      Deg(l.c_max_rad).c_str(), Deg(plan.c_max_step_rad).c_str(), a.output.c_str(),
+      a.csv.empty() ? "" : ", ", a.csv.c_str());
+  for (const auto& f : plan.over_travel)
+    std::printf("error[%s]: %s (the cell cannot run this course)\n", f.code.c_str(),
+                f.message.c_str());
+  return plan.over_travel.empty() ? kExitOk : kExitFindings;
+}
+
+#ifdef STITCHSIM_HAVE_COLLISION
+/// Head/part interference of a candidate programme: parsed back from its text, each
+/// programmed pose solved (rail + arm) and checked. Poses between the points are the
+/// simulator's business (`stitchsim verify`).
+struct CandidateCheck {
+  bool clear = false;
+  std::string detail;  ///< why not clear
+  std::string error;   ///< the check itself failed (never read as "clear")
+};
+
+CandidateCheck CheckCandidate(const LoadedScene& ls, sim::CollisionWorld& world,
+                              const std::string& text) {
+  CandidateCheck out;
+  DiagnosticSink sink;
+  const program::Dialect& dialect = program::Dialect::Default();
+  const auto blocks = program::ParseString(text, dialect, "candidate.nc", sink);
+  program::ModalState state(dialect, "candidate.nc", sink);
+  const geom::EulerOrder order =
+      geom::ParseEulerOrder(dialect.euler_order).value_or(geom::EulerOrder{});
+  const sim::CellSetup cell = sim::MakeCellSetup(*ls.robot, *ls.scene);
+  sim::JointVector previous = sim::JointVector::Zero();
+  bool have_previous = false;
+  sim::CollisionOptions options;
+  options.compute_clearance = false;
+  for (const auto& b : blocks) {
+    const program::Step& step = state.Update(b);
+    if (!step.is_move) continue;
+    const auto& axes = state.State().axes;
+    const auto angles = state.AnglesRad();
+    if (!angles || !axes[0] || !axes[1] || !axes[2]) continue;
+    Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
+    tool.translation() = Eigen::Vector3d(*axes[0], *axes[1], *axes[2]);
+    tool.linear() =
+        geom::RotationFromEuler(order, Eigen::Vector3d((*angles)[0], (*angles)[1], (*angles)[2]));
+    const sim::ToolPoseSolution sol =
+        sim::SolveToolPose(cell, tool, 0.0, std::nullopt, have_previous ? &previous : nullptr);
+    if (sol.ik.status == sim::IkStatus::kUnreachable ||
+        sol.ik.status == sim::IkStatus::kJointLimit) {
+      out.detail = "line " + std::to_string(b.source_line) + ": IK " +
+                   std::string(sim::ToString(sol.ik.status)) + " (" + sol.ik.reason + ")";
+      return out;
+    }
+    previous = sol.ik.joints;
+    have_previous = true;
+    const sim::CollisionResult r = world.Check(sol.ik.joints, options);
+    if (!r.error.empty()) {
+      out.error = "line " + std::to_string(b.source_line) + ": " + r.error;
+      return out;
+    }
+    for (const sim::Contact& c : r.contacts) {
+      if (c.kind != sim::ContactClass::kHeadPart) continue;
+      char depth[32];
+      std::snprintf(depth, sizeof(depth), "%.2f", c.depth_m * 1000.0);
+      out.detail = "line " + std::to_string(b.source_line) + ": " + c.body_a + " in " + c.body_b +
+                   " by " + depth + " mm";
+      return out;
+    }
+  }
+  if (sink.HasErrors()) {
+    out.error = "the candidate programme did not parse back";
+    return out;
+  }
+  out.clear = true;
+  return out;
+}
+#endif
+
+int RunPlanAfpAuto(const PlanAfpArgs& a, const scene::PathSpec* path,
+                   planner::AfpPlanOptions options) {
+#ifdef STITCHSIM_HAVE_COLLISION
+  auto ls = LoadSceneAndRobot(a.scene);
+  if (!ls) return kExitBadInput;
+  DiagnosticSink sink;
+  auto world = sim::CollisionWorld::Create(*ls->scene, *ls->robot, sink);
+  if (PrintDiagnostics(sink) || !world) return kExitBadInput;
+  if (path != nullptr) path = ls->scene->FindPath(path->name);
+  // Candidates 0, +step, -step, +2 step, ... up to the maximum: the smallest lean either way.
+  const int steps = static_cast<int>(std::floor(a.incline_max_deg / a.incline_step_deg + 1e-9));
+  for (int k = 0; k <= 2 * steps; ++k) {
+    const int magnitude = (k + 1) / 2;
+    const double incline_deg = (k % 2 == 1 ? 1.0 : -1.0) * magnitude * a.incline_step_deg;
+    options.incline_rad = (k == 0 ? 0.0 : incline_deg) * kDegToRad;
+    auto plan = planner::PlanAfpCourse(*ls->scene, path, options, sink);
+    if (PrintDiagnostics(sink) || !plan) return kExitBadInput;
+    std::ostringstream text;
+    planner::WriteAfpProgram(*plan, *ls->scene, program::Dialect::Default(), text);
+    const CandidateCheck check = CheckCandidate(*ls, *world, text.str());
+    if (!check.error.empty()) {
+      PrintError("plan-collision-check", "incline " + Deg(options.incline_rad) +
+                                             " deg: interference check failed: " + check.error);
+      return kExitBadInput;
+    }
+    if (check.clear) {
+      std::printf(
+          "incline auto: %s deg is the smallest clear inclination (B travel %s deg, "
+          "C travel %s deg)\n",
+          Deg(options.incline_rad).c_str(), Deg(plan->b_max_rad - plan->b_min_rad).c_str(),
+          Deg(plan->c_max_rad - plan->c_min_rad).c_str());
+      return WriteAfpOutputs(*ls->scene, *plan, a);
+    }
+    std::printf("incline %s deg: not clear: %s\n", Deg(options.incline_rad).c_str(),
+                check.detail.c_str());
+  }
+  std::printf(
+      "error[plan-afp-no-clear-incline]: no inclination within +-%.3f deg clears the "
+      "head and the part\n",
+      a.incline_max_deg);
+  return kExitFindings;
+#else
+  (void)a;
+  (void)path;
+  (void)options;
+  PrintError("plan-collision-unavailable",
+             "--incline auto: collision checking unavailable (sim::CollisionWorld is not built "
+             "into this stitchsim); give --incline DEG");
+  return kExitBadInput;
+#endif
+}
+
+int RunPlanAfp(const PlanAfpArgs& a) {
+  DiagnosticSink sink;
+  auto scene = scene::LoadScene(a.scene, sink);
+  if (PrintDiagnostics(sink) || !scene) return kExitBadInput;
+  const bool by_lay_angle = !std::isnan(a.lay_angle_deg);
+  const scene::PathSpec* path = nullptr;
+  if (!by_lay_angle) {
+    path = a.path.empty() ? &scene->paths.front() : scene->FindPath(a.path);
+    if (path == nullptr) {
+      std::string names;
+      for (const auto& p : scene->paths) names += (names.empty() ? "" : ", ") + p.name;
+      PrintError("plan-unknown-path",
+                 a.scene + ": no path named '" + a.path + "' (paths: " + names + ")");
+      return kExitBadInput;
+    }
+  }
+  planner::AfpPlanOptions options;
+  if (by_lay_angle) options.lay_angle_rad = a.lay_angle_deg * kDegToRad;
+  options.point_spacing_mm = a.point_spacing_mm;
+  if (a.incline == "auto") return RunPlanAfpAuto(a, path, options);
+  char* end = nullptr;
+  const double incline_deg = std::strtod(a.incline.c_str(), &end);
+  if (a.incline.empty() || end != a.incline.c_str() + a.incline.size() ||
+      !std::isfinite(incline_deg)) {
+    PrintError("plan-bad-incline",
+               "--incline must be a number of degrees or 'auto', got '" + a.incline + "'");
+    return kExitBadInput;
+  }
+  options.incline_rad = incline_deg * kDegToRad;
+  auto plan = planner::PlanAfpCourse(*scene, path, options, sink);
+  if (PrintDiagnostics(sink) || !plan) return kExitBadInput;
+  return WriteAfpOutputs(*scene, *plan, a);
 }
 
 }  // namespace
@@ -76,6 +296,29 @@ void AddPlanCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("-o,--output", args->output, "Programme file to write")->required();
   cmd->callback([args, &exit_code] { exit_code = RunPlanStitch(*args); });
+
+  auto afp = std::make_shared<PlanAfpArgs>();
+  CLI::App* afp_cmd = plan->add_subcommand(
+      "afp", "A fibre-placement course (seed 003): normal or inclined pressure, B/C per point");
+  afp_cmd->add_option("--scene", afp->scene, "Scene YAML file (AFP head)")->required();
+  auto* path_opt = afp_cmd->add_option(
+      "--path", afp->path, "Course = this scene path (default: the first; not with --lay-angle)");
+  afp_cmd
+      ->add_option("--lay-angle", afp->lay_angle_deg,
+                   "Course = straight (u, v) line at this angle to the u axis through the "
+                   "domain centre, degrees (cylinder: helix, 0 = axial, 90 = hoop)")
+      ->excludes(path_opt);
+  afp_cmd->add_option("--incline", afp->incline,
+                      "Head lean along the course, degrees (0 = normal pressure), or 'auto'");
+  afp_cmd->add_option("--incline-max", afp->incline_max_deg, "auto: largest lean tried, degrees")
+      ->check(CLI::Range(0.0, 89.0));
+  afp_cmd->add_option("--incline-step", afp->incline_step_deg, "auto: lean step, degrees")
+      ->check(CLI::PositiveNumber);
+  afp_cmd->add_option("--spacing", afp->point_spacing_mm, "Point spacing along the course, mm")
+      ->check(CLI::PositiveNumber);
+  afp_cmd->add_option("-o,--output", afp->output, "Programme file to write")->required();
+  afp_cmd->add_option("--csv", afp->csv, "Per-point CSV (alpha, tangent, inclination, B, C)");
+  afp_cmd->callback([afp, &exit_code] { exit_code = RunPlanAfp(*afp); });
 }
 
 }  // namespace stitchsim::app

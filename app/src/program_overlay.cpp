@@ -37,7 +37,8 @@ std::optional<ProgramOverlay> ProgramStitchOverlay(const LoadedScene& /*ls*/,
       if (auto abc = state.AnglesRad()) {
         Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
         tool.translation() = p;
-        tool.linear() = geom::RotationFromEuler(order, Eigen::Vector3d((*abc)[0], (*abc)[1], (*abc)[2]));
+        tool.linear() =
+            geom::RotationFromEuler(order, Eigen::Vector3d((*abc)[0], (*abc)[1], (*abc)[2]));
         out.first_tool_in_part_mm = tool;
       }
     }

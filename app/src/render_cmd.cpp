@@ -1,17 +1,15 @@
 // `stitchsim render`: a PNG of the cell, the part and its paths, the robot at a reachable
 // start pose, rendered headless through OSMesa.
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "stitchsim/common/files.h"
-
 #include "cli_common.h"
 #include "commands.h"
+#include "stitchsim/common/files.h"
 #include "stitchsim/geom/curve.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/render/renderer.h"
@@ -36,8 +34,8 @@ struct RenderArgs {
 StartPose SolveStartPose(const LoadedScene& ls, const Eigen::Isometry3d& tool_in_part_mm) {
   const sim::CellSetup cell = sim::MakeCellSetup(*ls.robot, *ls.scene);
   StartPose out;
-  const sim::ToolPoseSolution sol = sim::SolveToolPose(cell, tool_in_part_mm, 0.0, std::nullopt,
-                                                       nullptr);
+  const sim::ToolPoseSolution sol =
+      sim::SolveToolPose(cell, tool_in_part_mm, 0.0, std::nullopt, nullptr);
   out.ok = sol.ik.status == sim::IkStatus::kOk;
   out.reason = sol.ik.reason;
   out.joints = out.ok ? sol.ik.joints : sim::HomeJoints(*ls.robot, sol.rail.rail_m);
@@ -140,8 +138,8 @@ int RunRenderScene(const LoadedScene& ls, const RenderRequest& req) {
   for (int j = 0; j < sim::kNumJoints; ++j) {
     const int id = mj_name2id(model.get(), mjOBJ_JOINT, std::string(sim::kJointNames[j]).c_str());
     if (id < 0) {
-      PrintError("model-missing-joint", "MuJoCo model lacks joint " +
-                                            std::string(sim::kJointNames[j]));
+      PrintError("model-missing-joint",
+                 "MuJoCo model lacks joint " + std::string(sim::kJointNames[j]));
       return kExitBadInput;
     }
     data->qpos[model->jnt_qposadr[id]] = q[j];
@@ -168,19 +166,32 @@ int RunRenderScene(const LoadedScene& ls, const RenderRequest& req) {
   for (const auto& set : req.point_sets) {
     render::Overlay o;
     o.label = set.label;
-    o.polyline = false;
+    o.polyline = set.polyline;
     o.radius_m = close_up ? 0.0015 : 0.005;
     for (int i = 0; i < 4; ++i) o.rgba[i] = set.rgba[static_cast<std::size_t>(i)];
-    for (const auto& p : set.points_part_mm) o.points_m.push_back(part_world * (p / 1000.0));
+    for (const auto& p : set.points_part_mm) {
+      // Stitch points sit on the mold surface, under the preform: draw them on its top.
+      Eigen::Vector3d q = p;
+      if (!set.polyline) {
+        const geom::SurfaceProjection f = ls.scene->surface->Project(p);
+        q = f.point + (ls.scene->preform_thickness_mm + 0.5) * f.normal;
+      }
+      o.points_m.push_back(part_world * (q / 1000.0));
+    }
     overlays.push_back(std::move(o));
     radius_scale.push_back(set.radius_scale);
   }
   std::vector<Eigen::Vector3d> interest;
+  const bool part_view = req.view == "part";
   if (close_up) {
     interest.push_back(req.tool_world_m.translation());
     interest.push_back(req.tool_world_m.translation() + Eigen::Vector3d(0, 0, 0.6));
-  } else {
+  } else if (part_view) {
     for (const auto& o : overlays) interest.insert(interest.end(), o.points_m.begin(), o.points_m.end());
+    interest.push_back(req.tool_world_m.translation());
+  } else {
+    for (const auto& o : overlays)
+      interest.insert(interest.end(), o.points_m.begin(), o.points_m.end());
     const int base = mj_name2id(model.get(), mjOBJ_BODY, "base_link");
     const int l3 = mj_name2id(model.get(), mjOBJ_BODY, "link_3");
     for (int b : {base, l3}) {
@@ -193,6 +204,19 @@ int RunRenderScene(const LoadedScene& ls, const RenderRequest& req) {
     interest.emplace_back(part_world.translation());
   }
   render::CameraView view = FrameView(interest, close_up);
+  if (part_view) {
+    // The stitches from above at a slant, close enough to tell them apart.
+    Eigen::Vector3d lo = interest.front(), hi = interest.front();
+    for (const auto& p : interest) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    view.lookat_m = 0.5 * (lo + hi);
+    view.distance_m = std::max(0.5, 1.6 * 0.5 * (hi - lo).norm() / std::tan(20.0 * 3.14159265358979 / 180.0));
+    // From the far side of the part (the robot works from the rail side, -y).
+    view.azimuth_deg = -60.0;
+    view.elevation_deg = -55.0;
+  }
   if (close_up) {
     // Look along the tool y axis (the stitch direction), low, so both needles and the
     // presser foot show side by side under the head.
@@ -203,7 +227,7 @@ int RunRenderScene(const LoadedScene& ls, const RenderRequest& req) {
     view.elevation_deg = -12.0;
   }
   // Paths and stitches are drawn thick enough to see at the chosen distance.
-  const double min_radius = view.distance_m * (close_up ? 0.0006 : 0.0012);
+  const double min_radius = view.distance_m * (close_up ? 0.0006 : (part_view ? 0.003 : 0.0012));
   for (std::size_t i = 0; i < overlays.size(); ++i) {
     overlays[i].radius_m = std::max(overlays[i].radius_m, min_radius) * radius_scale[i];
   }
@@ -234,8 +258,8 @@ void AddRenderCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--height", args->height, "Image height in pixels")->check(CLI::Range(16, 8192));
   cmd->add_option("--coverage-json", args->coverage_json,
                   "Also write the pixel coverage of robot, head, mold, preform, paths... (JSON)");
-  cmd->add_option("--view", args->view, "overview | head")
-      ->check(CLI::IsMember({"overview", "head"}));
+  cmd->add_option("--view", args->view, "overview | head | part")
+      ->check(CLI::IsMember({"overview", "head", "part"}));
   cmd->callback([args, &exit_code] {
     auto ls = LoadSceneAndRobot(args->scene);
     if (!ls) {

@@ -1,7 +1,7 @@
 // `stitchsim verify`: execute a programme on the cell, check every stitch and pose, report.
-#include <CLI/CLI.hpp>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -25,6 +25,7 @@ struct VerifyArgs {
   std::string report_json;
   std::string junit;
   std::string snapshots;
+  bool no_collision = false;
 };
 
 // Passes the trace on and shows progress on a terminal.
@@ -63,6 +64,7 @@ int WriteOverview(const LoadedScene& ls, const verify::Verifier& v, const std::s
                   const sim::JointVector& joints, const Eigen::Isometry3d& tool_world) {
   RenderRequest req;
   req.output = (std::filesystem::path(dir) / "overview.png").string();
+  req.view = "part";
   req.joints = joints;
   req.tool_world_m = tool_world;
   RenderRequest::PointSet sets[3];
@@ -78,7 +80,8 @@ int WriteOverview(const LoadedScene& ls, const verify::Verifier& v, const std::s
     const auto& m = marks[i];
     if (m.severity == 0 && i % stride != 0) continue;
     auto& set = sets[std::min<int>(m.severity, 2)];
-    if (set.points_part_mm.size() < 6000) set.points_part_mm.push_back(m.position_mm.cast<double>());
+    if (set.points_part_mm.size() < 6000)
+      set.points_part_mm.push_back(m.position_mm.cast<double>());
   }
   for (auto& s : sets) {
     if (!s.points_part_mm.empty()) req.point_sets.push_back(std::move(s));
@@ -98,17 +101,31 @@ int WriteCloseUp(const LoadedScene& ls, const sim::CellSetup& cell, const verify
   req.width = 1024;
   req.height = 768;
   req.joints = s->has_joints ? s->joints : SolveStartPose(ls, s->tool_part).joints;
-  req.tool_world_m = sim::PartPoseWorld(cell, req.joints[sim::kRotator]) *
-                      [&] {
-                        Eigen::Isometry3d t = s->tool_part;
-                        t.translation() /= 1000.0;
-                        return t;
-                      }();
+  req.tool_world_m = sim::PartPoseWorld(cell, req.joints[sim::kRotator]) * [&] {
+    Eigen::Isometry3d t = s->tool_part;
+    t.translation() /= 1000.0;
+    return t;
+  }();
+  // The offending stitch: a red ring on the preform around the tool point (the presser
+  // foot hides the stitch itself) and a red dot at the tool point.
+  const Eigen::Vector3d centre = s->tool_part.translation();
+  const Eigen::Vector3d up = s->tool_part.linear().col(2);
+  const Eigen::Vector3d ex = s->tool_part.linear().col(0), ey = s->tool_part.linear().col(1);
+  RenderRequest::PointSet ring;
+  ring.label = "stitch_error";
+  ring.rgba = kError;
+  ring.polyline = true;
+  for (int k = 0; k <= 48; ++k) {
+    const double a = 2 * 3.14159265358979 * k / 48;
+    ring.points_part_mm.push_back(centre + (ls.scene->preform_thickness_mm + 1.0) * up +
+                                  70.0 * (std::cos(a) * ex + std::sin(a) * ey));
+  }
+  req.point_sets.push_back(std::move(ring));
   RenderRequest::PointSet hit;
   hit.label = "stitch_error";
   hit.rgba = kError;
   hit.radius_scale = 2.0;
-  hit.points_part_mm.push_back(s->tool_part.translation());
+  hit.points_part_mm.push_back(centre);
   req.point_sets.push_back(std::move(hit));
   return RunRenderScene(ls, req);
 }
@@ -127,13 +144,21 @@ int RunVerify(const VerifyArgs& a) {
   std::ifstream in(a.program, std::ios::binary);
   const sim::CellSetup cell = sim::MakeCellSetup(*ls->robot, *ls->scene);
   const process::ProcessModel model = process::MakeProcessModel(*ls->scene, stitch_length);
-  verify::RuleContext ctx{ls->scene.get(), ls->robot.get(), &model};
+  std::unique_ptr<sim::CollisionWorld> collision;
+  if (!a.no_collision) {
+    BoundedDiagnosticSink world_diagnostics(20);
+    collision = sim::CollisionWorld::Create(*ls->scene, *ls->robot, world_diagnostics);
+    if (PrintDiagnostics(world_diagnostics) || !collision) return kExitBadInput;
+  }
+  verify::RuleContext ctx{ls->scene.get(), ls->robot.get(), &model, collision.get()};
+  sim::ExecuteOptions execute_options = sim::ExecuteOptionsFor(*ls->scene);
+  execute_options.collision = collision.get();
   verify::Verifier verifier(ctx, !a.snapshots.empty());
   ProgressSink progress(verifier, ::isatty(2) != 0);
   BoundedDiagnosticSink diagnostics(100);
   const sim::ExecutionSummary run =
-      sim::ExecuteProgram(cell, model, dialect, in, a.program, sim::ExecuteOptionsFor(*ls->scene),
-                          diagnostics, progress);
+      sim::ExecuteProgram(cell, model, dialect, in, a.program, execute_options, diagnostics,
+                          progress);
   progress.Done();
   if (PrintDiagnostics(diagnostics) || !run.ok) return kExitBadInput;
 
@@ -171,11 +196,10 @@ int RunVerify(const VerifyArgs& a) {
       PrintError("io-write", "cannot create snapshot folder " + a.snapshots + ": " + ec.message());
       return kExitBadInput;
     }
-    // The overview shows the robot at the first stitch's pose.
-    const auto& marks = verifier.StitchMarks();
-    Eigen::Isometry3d first = Eigen::Isometry3d::Identity();
-    if (!marks.empty()) first.translation() = marks.front().position_mm.cast<double>();
-    const StartPose start = SolveStartPose(*ls, PathStartTool(*ls->scene, ls->scene->paths.front()));
+    // The overview shows the robot clear above the start of the scene's first path.
+    Eigen::Isometry3d approach = PathStartTool(*ls->scene, ls->scene->paths.front());
+    approach.translation() += 400.0 * approach.linear().col(2);
+    const StartPose start = SolveStartPose(*ls, approach);
     if (WriteOverview(*ls, verifier, a.snapshots, start.joints, start.tool_world_m) != kExitOk) {
       return kExitBadInput;
     }
@@ -199,6 +223,8 @@ void AddVerifyCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--junit", args->junit, "Write a JUnit XML report here");
   cmd->add_option("--snapshots", args->snapshots,
                   "Write overview.png and <rule>.png close-ups into this folder");
+  cmd->add_flag("--no-collision", args->no_collision,
+                "Skip the FCL collision checks (collision.* rules)");
   cmd->callback([args, &exit_code] { exit_code = RunVerify(*args); });
 }
 

@@ -12,6 +12,10 @@ namespace stitchsim {
 
 std::string WriteFileAtomically(const std::filesystem::path& path, std::string_view contents) {
   namespace fs = std::filesystem;
+  if (path.has_parent_path()) {
+    std::error_code ec;
+    fs::create_directories(path.parent_path(), ec);  // a failure shows up when writing
+  }
   fs::path tmp = path;
   tmp += ".tmp." + std::to_string(::getpid());
   {

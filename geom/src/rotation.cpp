@@ -43,8 +43,7 @@ Eigen::Vector3d EulerFromRotation(EulerOrder order, const Eigen::Matrix3d& rotat
                                   const Eigen::Vector3d* hint_rad) {
   // Eigen's eulerAngles(a0, a1, a2) returns R = R_a0(e0) R_a1(e1) R_a2(e2) (moving axes),
   // which equals our fixed-axes order reversed.
-  const Eigen::Vector3d e =
-      rotation.eulerAngles(order.axes[2], order.axes[1], order.axes[0]);
+  const Eigen::Vector3d e = rotation.eulerAngles(order.axes[2], order.axes[1], order.axes[0]);
   Eigen::Vector3d sol1(e[2], e[1], e[0]);
   // The alternate solution of a Tait-Bryan / proper Euler triple.
   const bool proper = order.axes[0] == order.axes[2];

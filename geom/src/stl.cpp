@@ -1,7 +1,6 @@
 #include "stitchsim/geom/stl.h"
 
 #include <Eigen/Geometry>
-
 #include <cmath>
 #include <cstdint>
 #include <cstring>

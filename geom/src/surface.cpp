@@ -220,10 +220,10 @@ class PolyHeightField final : public Surface {
     double kmax = 1e-12;
     for (int i = 0; i <= 8; ++i) {
       for (int k = 0; k <= 8; ++k) {
-        const Eigen::Vector2d uv = dom_.min + (dom_.max - dom_.min).cwiseProduct(
-                                                  Eigen::Vector2d(i / 8.0, k / 8.0));
-        kmax = std::max({kmax, std::abs(Eval(uv, 2, 0)), std::abs(Eval(uv, 0, 2)),
-                         std::abs(Eval(uv, 1, 1))});
+        const Eigen::Vector2d uv =
+            dom_.min + (dom_.max - dom_.min).cwiseProduct(Eigen::Vector2d(i / 8.0, k / 8.0));
+        kmax = std::max(
+            {kmax, std::abs(Eval(uv, 2, 0)), std::abs(Eval(uv, 0, 2)), std::abs(Eval(uv, 1, 1))});
       }
     }
     const double h = std::sqrt(8.0 * chord_tol_mm / kmax);
@@ -275,8 +275,8 @@ class MeshSurface final : public Surface {
     // Uniform grid over (x, y) for point location.
     const Eigen::Vector2d ext = (dom_.max - dom_.min).cwiseMax(1e-9);
     const double cells = std::max(1.0, std::sqrt(static_cast<double>(mesh_.triangles.size())));
-    grid_n_ = Eigen::Vector2i(std::max(1, static_cast<int>(cells)),
-                              std::max(1, static_cast<int>(cells)));
+    grid_n_ =
+        Eigen::Vector2i(std::max(1, static_cast<int>(cells)), std::max(1, static_cast<int>(cells)));
     cell_size_ = ext.cwiseQuotient(grid_n_.cast<double>());
     grid_.assign(static_cast<std::size_t>(grid_n_.x() * grid_n_.y()), {});
     for (std::size_t ti = 0; ti < mesh_.triangles.size(); ++ti) {

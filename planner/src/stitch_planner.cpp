@@ -60,7 +60,7 @@ std::optional<StitchPathPlanner> StitchPathPlanner::Create(const scene::Scene& s
   p.process_ = process::MakeProcessModel(scene, p.stitch_length_mm_);
   p.limits_ = process::NeedleLimitsFrom(scene.limits);
   p.current_ = p.path_.AtArcLength(0.0);
-  p.following_ = p.path_.AtArcLength(p.stitch_length_mm_);
+  p.following_ = p.path_.AtArcLengthFrom(p.current_, p.stitch_length_mm_);
   p.current_frame_ = p.FrameAt(p.current_, p.following_);
   if (!p.current_frame_.matrix().allFinite()) {
     sink.Error("plan-degenerate-frame", path.where,
@@ -121,7 +121,9 @@ bool StitchPathPlanner::Next(PlannedStitch& out) {
   geom::PathPoint after;
   Eigen::Isometry3d end_frame;
   if (i < count_) {
-    after = path_.AtArcLength(std::min((i + 1) * stitch_length_mm_, path_.Length()));
+    // Sequential: searched from this stitch's end point, one stitch back.
+    after = path_.AtArcLengthFrom(following_,
+                                  std::min((i + 1) * stitch_length_mm_, path_.Length()));
     end_frame = FrameAt(following_, after);
     if (!end_frame.matrix().allFinite()) end_frame = EndFrame();
   } else {
@@ -129,8 +131,7 @@ bool StitchPathPlanner::Next(PlannedStitch& out) {
   }
   if (i == count_ && path_.Closed()) end_frame.translation() = start_pose_.translation();
   out.end = end_frame;
-  const geom::PathPoint mid = path_.AtArcLength((i - 0.5) * stitch_length_mm_);
-  out.segment_label = spec_->curve->Label(mid.segment);
+  out.segment_label = spec_->curve->Label(path_.SegmentAtArcLength((i - 0.5) * stitch_length_mm_));
   out.coupled = process::EvaluateCoupledStitch(process_, out.start, out.end);
   out.exceeded_limit = process::FirstExceededLimit(out.coupled, limits_);
   out.rotation_rad = geom::AngleBetween(out.start.linear(), out.end.linear());
@@ -184,24 +185,28 @@ ProgramSummary WriteStitchProgram(StitchPathPlanner& planner, const scene::Scene
     std::snprintf(buf, sizeof(buf), "%.6f", v);
     return std::string(buf);
   };
-  header.entries = {{"scene", scene.name},
-                    {"head", scene.head.name},
-                    {"path", path_name},
-                    {"mode", std::string(ToString(planner.GetMode()))},
-                    {"stitch_length_mm", num(l)},
-                    {"stitches", std::to_string(planner.StitchCount())}};
+  header.entries = {
+      {"scene", scene.name},        {"head", scene.head.name},
+      {"path", path_name},          {"mode", std::string(ToString(planner.GetMode()))},
+      {"stitch_length_mm", num(l)}, {"stitches", std::to_string(planner.StitchCount())}};
   w.WriteHeader(header);
 
   program::Block b;
   Eigen::Vector3d angles_deg = Eigen::Vector3d::Zero();
   Eigen::Vector3d angles_rad = Eigen::Vector3d::Zero();
   bool have_angles = false;
+  Eigen::Matrix3d angles_of = Eigen::Matrix3d::Zero();  // the rotation angles_rad describe
   auto set_pose = [&](program::Block& blk, const Eigen::Isometry3d& pose) {
-    const Eigen::Vector3d e = geom::EulerFromRotation(order, pose.linear(),
-                                                      have_angles ? &angles_rad : nullptr);
-    angles_rad = e;
-    angles_deg = e * kRadToDeg;
-    have_angles = true;
+    // The same rotation again (a decoupled translation line, a straight row) gives the same
+    // angles: EulerFromRotation with its own result as hint returns that result.
+    if (!have_angles || pose.linear() != angles_of) {
+      const Eigen::Vector3d e =
+          geom::EulerFromRotation(order, pose.linear(), have_angles ? &angles_rad : nullptr);
+      angles_rad = e;
+      angles_deg = e * kRadToDeg;
+      angles_of = pose.linear();
+      have_angles = true;
+    }
     blk[Axis::kX] = pose.translation().x();
     blk[Axis::kY] = pose.translation().y();
     blk[Axis::kZ] = pose.translation().z();

@@ -1,7 +1,10 @@
 #include "stitchsim/process/stitch_cycle.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <span>
+#include <vector>
 
 namespace stitchsim::process {
 namespace {
@@ -105,17 +108,169 @@ Eigen::Isometry3d InterpolatePose(const Eigen::Isometry3d& from, const Eigen::Is
   return out;
 }
 
+namespace {
+
+// A vector term of the coupled-stitch drift, as plain doubles for the sample loops.
+struct Vec3 {
+  double x, y, z;
+  Vec3() = default;  // left uninitialised: filled before use
+  explicit Vec3(const Eigen::Vector3d& v) : x(v.x()), y(v.y()), z(v.z()) {}
+};
+
+// One needle of EvaluateCoupledStitch: its axis and two shaft points (lowest and highest),
+// each as entry value + sin * A-term + versine * B-term (see there).
+struct CoupledNeedle {
+  Vec3 axis0, axis_a, axis_b;
+  Vec3 point_a[2], point_b[2];
+  double max_sq;
+};
+
+}  // namespace
+
 WindowMetrics EvaluateCoupledStitch(const ProcessModel& model, const Eigen::Isometry3d& from,
                                     const Eigen::Isometry3d& to, int samples) {
-  // The drive advances linearly along the line, so line fraction = cycle phase.
-  NeedleWindow window(model);
-  window.Enter(InterpolatePose(from, to, model.phase_in));
-  for (int i = 1; i <= samples; ++i) {
-    const double phase =
-        model.phase_in + (model.phase_out - model.phase_in) * static_cast<double>(i) / samples;
-    window.Update(InterpolatePose(from, to, phase));
+  // The metrics NeedleWindow gives for InterpolatePose at the phases
+  //   phase_in + (phase_out - phase_in) * i / samples,  i = 0 (entry) .. samples,
+  // computed without a quaternion conversion per sample (the planner calls this for every
+  // stitch). The drive advances linearly along the line, so line fraction = cycle phase.
+  //  - Slerp turns about one axis (in the `from` frame) at a constant rate:
+  //    R(s) = R_from Rot(axis, s angle). From the entry, sample i is turned by Rot(axis,
+  //    i delta), delta = angle (phase_out - phase_in) / samples, so
+  //    R_i = R_in (I + sin K + vers K^2) = R_in + sin A + vers B  (K = [axis]x), with sin
+  //    and versine of i delta from the angle-addition recurrence. The rotation since entry
+  //    grows with i: its largest value is at the last sample.
+  //  - A shaft point p drifts by (R_i - R_in) p + walk R_i e_y + travel: affine in its
+  //    height, with a convex norm, so over the shaft heights the largest drift is at the
+  //    lowest or the highest one.
+  //  - With no rotation every drift and the walk scale with the travel, so the last sample
+  //    holds every maximum.
+  WindowMetrics m;
+  m.side_force_mm.assign(model.needles.size(), 0.0);
+  if (samples < 1) return m;
+
+  double angle = 0.0;  // [0, pi]
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  if (from.linear() != to.linear()) {  // a straight row repeats its frame exactly
+    const Eigen::Quaterniond qa(from.linear());
+    Eigen::Quaterniond qb(to.linear());
+    if (qa.dot(qb) < 0.0) qb.coeffs() = -qb.coeffs();  // the short way, as slerp goes
+    const Eigen::Quaterniond rel = qa.conjugate() * qb;
+    const double vec_norm = rel.vec().norm();
+    angle = 2.0 * std::atan2(vec_norm, std::abs(rel.w()));
+    if (vec_norm > 0.0) axis = rel.vec() / vec_norm;
   }
-  return window.Metrics();
+
+  const double s_in = model.phase_in;
+  const double span = model.phase_out - model.phase_in;
+  const Eigen::Matrix3d r_in =
+      angle == 0.0 ? from.linear()
+                   : Eigen::Matrix3d(from.linear() *
+                                     Eigen::AngleAxisd(s_in * angle, axis).toRotationMatrix());
+  const Eigen::Vector3d t_in = (1.0 - s_in) * from.translation() + s_in * to.translation();
+  Eigen::Matrix3d k;
+  k << 0.0, -axis.z(), axis.y(), axis.z(), 0.0, -axis.x(), -axis.y(), axis.x(), 0.0;
+  const Eigen::Matrix3d a_mat = r_in * k;
+  const Eigen::Matrix3d b_mat = a_mat * k;
+
+  const double total = std::abs(span) * angle;  // rotation since entry at the last sample
+  m.rotation_rad = axis.cwiseAbs() * total;
+  m.rotation_total_rad = total;
+
+  const bool have_heights = !model.shaft_heights_mm.empty();
+  double z[2] = {0.0, 0.0};
+  if (have_heights) {
+    const auto [lo, hi] =
+        std::minmax_element(model.shaft_heights_mm.begin(), model.shaft_heights_mm.end());
+    z[0] = *lo;
+    z[1] = *hi;
+  }
+  // Heads have one or two needles: no allocation (and no zeroing) for those.
+  std::array<CoupledNeedle, 2> few;
+  std::vector<CoupledNeedle> many;
+  if (model.needles.size() > few.size()) many.resize(model.needles.size());
+  const std::span<CoupledNeedle> needles =
+      many.empty() ? std::span<CoupledNeedle>(few.data(), model.needles.size())
+                   : std::span<CoupledNeedle>(many);
+  for (std::size_t n = 0; n < needles.size(); ++n) {
+    const scene::NeedleSpec& spec = model.needles[n];
+    CoupledNeedle& nd = needles[n];
+    nd.max_sq = 0.0;
+    nd.axis0 = Vec3(r_in * spec.direction);
+    nd.axis_a = Vec3(a_mat * spec.direction);
+    nd.axis_b = Vec3(b_mat * spec.direction);
+    for (int j = 0; j < 2; ++j) {
+      const Eigen::Vector3d p = ShaftPoint(spec, z[j]);
+      nd.point_a[j] = Vec3(a_mat * p);
+      nd.point_b[j] = Vec3(b_mat * p);
+    }
+  }
+  const Vec3 y0(r_in.col(1)), ya(a_mat.col(1)), yb(b_mat.col(1));
+
+  const double half = 0.5 * span * angle / samples;
+  const double sin_half = std::sin(half);
+  const double sin_d = 2.0 * sin_half * std::cos(half);
+  const double vers_d = 2.0 * sin_half * sin_half;
+  double sin_prev = 0.0, vers_prev = 0.0;  // of (i - 1) delta
+
+  // Samples in blocks of plain arrays, so the per-sample arithmetic vectorises.
+  constexpr int kBlock = 32;
+  double sn[kBlock], vs[kBlock], hx[kBlock], hy[kBlock], hz[kBlock], q0[kBlock], q1[kBlock];
+  // No rotation: the last sample only (sin and versine stay 0).
+  const int first = angle == 0.0 ? samples : 1;
+  for (int block = first; block <= samples; block += kBlock) {
+    const int count = std::min(kBlock, samples - block + 1);
+    for (int j = 0; j < count; ++j) {
+      // sin and versine of i delta = (i - 1) delta + delta; the versine keeps its relative
+      // precision at small angles.
+      sn[j] = sin_prev * (1.0 - vers_d) + (1.0 - vers_prev) * sin_d;
+      vs[j] = vers_prev + vers_d - vers_prev * vers_d + sin_prev * sin_d;
+      sin_prev = sn[j];
+      vers_prev = vs[j];
+      const double s = s_in + span * static_cast<double>(block + j) / samples;
+      const Eigen::Vector3d travel =
+          ((1.0 - s) * from.translation() + s * to.translation()) - t_in;
+      hx[j] = travel.x();
+      hy[j] = travel.y();
+      hz[j] = travel.z();
+    }
+    // Walk (cancels the tool point's travel along the current head y) and the drift every
+    // shaft point shares: walk R_i e_y + travel.
+    double walk_max = m.walk_demand_mm;
+    for (int j = 0; j < count; ++j) {
+      const double yx = y0.x + sn[j] * ya.x + vs[j] * yb.x;
+      const double yy = y0.y + sn[j] * ya.y + vs[j] * yb.y;
+      const double yz = y0.z + sn[j] * ya.z + vs[j] * yb.z;
+      const double walk = -(yx * hx[j] + yy * hy[j] + yz * hz[j]);
+      walk_max = std::max(walk_max, std::abs(walk));
+      hx[j] += walk * yx;
+      hy[j] += walk * yy;
+      hz[j] += walk * yz;
+    }
+    m.walk_demand_mm = walk_max;
+    if (!have_heights) continue;
+    for (CoupledNeedle& nd : needles) {
+      for (int j = 0; j < count; ++j) {
+        const double ax = nd.axis0.x + sn[j] * nd.axis_a.x + vs[j] * nd.axis_b.x;
+        const double ay = nd.axis0.y + sn[j] * nd.axis_a.y + vs[j] * nd.axis_b.y;
+        const double az = nd.axis0.z + sn[j] * nd.axis_a.z + vs[j] * nd.axis_b.z;
+        double* q[2] = {q0, q1};
+        for (int p = 0; p < 2; ++p) {
+          double dx = sn[j] * nd.point_a[p].x + vs[j] * nd.point_b[p].x + hx[j];
+          double dy = sn[j] * nd.point_a[p].y + vs[j] * nd.point_b[p].y + hy[j];
+          double dz = sn[j] * nd.point_a[p].z + vs[j] * nd.point_b[p].z + hz[j];
+          // Motion along the needle is the stitch itself.
+          const double along = dx * ax + dy * ay + dz * az;
+          dx -= along * ax;
+          dy -= along * ay;
+          dz -= along * az;
+          q[p][j] = dx * dx + dy * dy + dz * dz;
+        }
+      }
+      for (int j = 0; j < count; ++j) nd.max_sq = std::max(nd.max_sq, std::max(q0[j], q1[j]));
+    }
+  }
+  for (std::size_t n = 0; n < needles.size(); ++n) m.side_force_mm[n] = std::sqrt(needles[n].max_sq);
+  return m;
 }
 
 NeedleLimits NeedleLimitsFrom(const scene::RuleLimits& limits) {

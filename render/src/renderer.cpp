@@ -24,8 +24,8 @@ struct OffscreenRenderer::Impl {
   int model_geom_count = 0;
 };
 
-std::unique_ptr<OffscreenRenderer> OffscreenRenderer::Create(mjModel* model, int width,
-                                                             int height, std::string& error) {
+std::unique_ptr<OffscreenRenderer> OffscreenRenderer::Create(mjModel* model, int width, int height,
+                                                             std::string& error) {
   if (width < 16 || height < 16 || width > 8192 || height > 8192) {
     error = "image size must be between 16 and 8192 pixels";
     return nullptr;
@@ -151,8 +151,8 @@ Segmentation OffscreenRenderer::RenderSegmentation(mjData* data, const CameraVie
   for (int i = 0; i < im.scn.ngeom; ++i) {
     const mjvGeom& g = im.scn.geoms[i];
     if (i >= im.model_geom_count) {
-      seg.names.push_back("overlay:" + im.overlay_labels[static_cast<std::size_t>(
-                                           i - im.model_geom_count)]);
+      seg.names.push_back("overlay:" +
+                          im.overlay_labels[static_cast<std::size_t>(i - im.model_geom_count)]);
       seg.body_names.emplace_back();
     } else if (g.objtype == mjOBJ_GEOM) {
       const char* n = mj_id2name(im.model, mjOBJ_GEOM, g.objid);

@@ -17,7 +17,9 @@ std::string Num(double v) {
   return buf;
 }
 
-std::string Vec(const Eigen::Vector3d& v) { return Num(v.x()) + " " + Num(v.y()) + " " + Num(v.z()); }
+std::string Vec(const Eigen::Vector3d& v) {
+  return Num(v.x()) + " " + Num(v.y()) + " " + Num(v.z());
+}
 
 std::string Quat(const Eigen::Matrix3d& r) {
   const Eigen::Quaterniond q(r);
@@ -84,13 +86,14 @@ std::string ComposeSceneMjcf(const scene::Scene& scene, DiagnosticSink& sink) {
   inset.max -= margin;
   AppendMesh(assets, "preform_mesh",
              geom::TessellateSlab(s, inset, 0.0, scene.preform_thickness_mm, 0.5));
-  part << "<body name=\"part\" pos=\"" << Vec(scene.mount_to_part_m.translation()) << "\" quat=\""
-       << Quat(scene.mount_to_part_m.linear()) << "\">\n"
-       << "  <geom name=\"" << kMoldGeom
-       << "\" type=\"mesh\" mesh=\"mold_mesh\" material=\"mold\" contype=\"0\" conaffinity=\"0\"/>\n"
-       << "  <geom name=\"" << kPreformGeom
-       << "\" type=\"mesh\" mesh=\"preform_mesh\" material=\"preform\" contype=\"0\" "
-          "conaffinity=\"0\"/>\n";
+  part
+      << "<body name=\"part\" pos=\"" << Vec(scene.mount_to_part_m.translation()) << "\" quat=\""
+      << Quat(scene.mount_to_part_m.linear()) << "\">\n"
+      << "  <geom name=\"" << kMoldGeom
+      << "\" type=\"mesh\" mesh=\"mold_mesh\" material=\"mold\" contype=\"0\" conaffinity=\"0\"/>\n"
+      << "  <geom name=\"" << kPreformGeom
+      << "\" type=\"mesh\" mesh=\"preform_mesh\" material=\"preform\" contype=\"0\" "
+         "conaffinity=\"0\"/>\n";
   int mesh_id = 0;
   for (const auto& c : scene.constraints) {
     const std::string gname = kConstraintGeomPrefix + c.name;

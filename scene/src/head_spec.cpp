@@ -23,8 +23,8 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
   if (!root) return std::nullopt;
   if (!r.ExpectMap(*root, "a head spec")) return std::nullopt;
   r.CheckKeys(*root,
-              {"stitchsim_head", "name", "description", "kind", "tool_number", "mjcf",
-               "tool_frame", "needles", "stitch", "afp", "limits"},
+              {"stitchsim_head", "name", "description", "kind", "tool_number", "mjcf", "tool_frame",
+               "needles", "stitch", "afp", "limits"},
               "head spec");
   HeadSpec h;
   h.file = file;
@@ -72,8 +72,7 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
     }
     h.flange_to_tool_m.setIdentity();
     h.flange_to_tool_m.translation() = pos / 1000.0;
-    h.flange_to_tool_m.linear() =
-        geom::RotationFromEuler(geom::EulerOrder{}, rot * (kPi / 180.0));
+    h.flange_to_tool_m.linear() = geom::RotationFromEuler(geom::EulerOrder{}, rot * (kPi / 180.0));
   }
   if (auto nd = r.Child(*root, "needles", true)) {
     if (!nd->IsSequence()) {
@@ -92,8 +91,9 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
         if (auto n = r.Child(item, "direction", true)) {
           if (auto v = r.Vector(*n, 3, "needle direction")) {
             if (v->norm() < 1e-9 || (*v)[2] >= 0) {
-              r.Error(*n, "out-of-range", "needle direction must be non-zero and point into the "
-                                          "preform (negative z)");
+              r.Error(*n, "out-of-range",
+                      "needle direction must be non-zero and point into the "
+                      "preform (negative z)");
             } else {
               ns.direction = v->normalized();
             }

@@ -25,8 +25,7 @@ class SceneLoader {
     if (!r_.ExpectMap(*root, "a scene")) return nullptr;
     r_.CheckKeys(*root,
                  {"stitchsim_scene", "name", "description", "units", "head", "cell", "part",
-                  "surface", "preform", "mold", "stitch", "constraints", "paths", "limits",
-                  "rail"},
+                  "surface", "preform", "mold", "stitch", "constraints", "paths", "limits", "rail"},
                  "scene");
     auto scene = std::make_unique<Scene>();
     scene->file = r_.File();
@@ -86,7 +85,8 @@ class SceneLoader {
  private:
   std::filesystem::path RequireFile(const YAML::Node& n, const std::filesystem::path& p) {
     std::error_code ec;
-    if (!std::filesystem::exists(p, ec)) r_.Error(n, "missing-file", "file not found: " + p.string());
+    if (!std::filesystem::exists(p, ec))
+      r_.Error(n, "missing-file", "file not found: " + p.string());
     return p;
   }
 
@@ -280,7 +280,8 @@ class SceneLoader {
           if (auto v = r_.Vector(*n, 3, "center", unit_)) centre = *v;
         }
         if (auto n = r_.Child(item, "size", true)) {
-          if (auto v = r_.Vector(*n, 3, "size", unit_); v && r_.Positive(*n, v->minCoeff(), "size")) {
+          if (auto v = r_.Vector(*n, 3, "size", unit_);
+              v && r_.Positive(*n, v->minCoeff(), "size")) {
             c.size_mm = *v;
           }
         }
@@ -397,8 +398,7 @@ class SceneLoader {
         return false;
       }
       if (!c || !radius) return false;
-      curve.Add(geom::MakeEllipticArc(*c, *radius, *radius, 0.0, start * kDeg, end * kDeg),
-                type);
+      curve.Add(geom::MakeEllipticArc(*c, *radius, *radius, 0.0, start * kDeg, end * kDeg), type);
       return true;
     }
     if (type == "polyline") {
@@ -470,8 +470,7 @@ class SceneLoader {
           r_.Error(item, "path-off-surface",
                    "path '" + p.name + "' leaves the surface domain near (" +
                        std::to_string(uv.x() / MmPer(unit_)) + ", " +
-                       std::to_string(uv.y() / MmPer(unit_)) + ") " +
-                       std::string(UnitName(unit_)));
+                       std::to_string(uv.y() / MmPer(unit_)) + ") " + std::string(UnitName(unit_)));
           return;
         }
       }

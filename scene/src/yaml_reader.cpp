@@ -96,8 +96,8 @@ bool YamlReader::CheckKeys(const YAML::Node& map, std::initializer_list<std::str
       std::string list;
       for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
       Error(kv.first, "unknown-key",
-            "unknown key '" + key + "' in " + std::string(context) + " (expected one of: " +
-                list + ")");
+            "unknown key '" + key + "' in " + std::string(context) + " (expected one of: " + list +
+                ")");
       ok = false;
     }
   }
@@ -126,8 +126,8 @@ std::optional<double> YamlReader::Number(const YAML::Node& node, std::string_vie
   auto v = ParseStrictNumber(node.Scalar(), not_finite);
   if (!v) {
     Error(node, not_finite ? "not-finite" : "bad-number",
-          std::string(what) + (not_finite ? " must be a finite number, got '"
-                                          : " must be a number, got '") +
+          std::string(what) +
+              (not_finite ? " must be a finite number, got '" : " must be a number, got '") +
               node.Scalar() + "'");
   }
   return v;
@@ -175,8 +175,8 @@ std::optional<double> YamlReader::Length(const YAML::Node& node, LengthUnit unit
     }
     auto parsed = ParseLengthUnit(suffix);
     if (!parsed) {
-      Error(node, "bad-unit", std::string(what) + ": unknown unit '" + suffix +
-                                  "' (use mm, in or m)");
+      Error(node, "bad-unit",
+            std::string(what) + ": unknown unit '" + suffix + "' (use mm, in or m)");
       return std::nullopt;
     }
     u = *parsed;
@@ -196,8 +196,9 @@ std::optional<Eigen::VectorXd> YamlReader::Vector(const YAML::Node& node, int n,
                                                   std::string_view what,
                                                   std::optional<LengthUnit> unit) {
   if (!node.IsSequence() || static_cast<int>(node.size()) != n) {
-    Error(node, "type", std::string(what) + " must be a list of " + std::to_string(n) +
-                            (unit ? " lengths" : " numbers"));
+    Error(node, "type",
+          std::string(what) + " must be a list of " + std::to_string(n) +
+              (unit ? " lengths" : " numbers"));
     return std::nullopt;
   }
   Eigen::VectorXd v(n);

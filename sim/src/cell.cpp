@@ -24,6 +24,7 @@ CellSetup MakeCellSetup(const RobotModel& robot, const scene::Scene& scene) {
   cell.mount_to_part_m = scene.mount_to_part_m;
   cell.rail_offset_m = scene.rail_offset_mm / 1000.0;
   cell.ik.reference = HomeJoints(robot, 0.0);
+  if (cell.mount == scene::Mount::kTable) cell.fixed_part_world_m = PartPoseWorld(cell, 0.0);
   if (auto it = scene.limits.find("kin.singularity"); it != scene.limits.end()) {
     if (auto k = it->second.find("a5_min_deg"); k != it->second.end()) {
       cell.ik.wrist_singularity_rad = k->second * 3.14159265358979323846 / 180.0;
@@ -33,6 +34,7 @@ CellSetup MakeCellSetup(const RobotModel& robot, const scene::Scene& scene) {
 }
 
 Eigen::Isometry3d PartPoseWorld(const CellSetup& cell, double rotator_rad) {
+  if (cell.fixed_part_world_m) return *cell.fixed_part_world_m;
   if (cell.mount == scene::Mount::kRotator) {
     return RotatorCarriedPose(*cell.robot, rotator_rad, cell.mount_to_part_m);
   }
@@ -63,15 +65,15 @@ ToolPoseSolution SolveToolPose(const CellSetup& cell, const Eigen::Isometry3d& t
   seed[kRotator] = rotator_rad;
   IkOptions options = cell.ik;
   options.reference = seed;
-  out.ik = SolveIk(*cell.robot, flange, out.rail.rail_m, previous != nullptr ? &seed : nullptr,
-                   options);
+  out.ik =
+      SolveIk(*cell.robot, flange, out.rail.rail_m, previous != nullptr ? &seed : nullptr, options);
   out.ik.joints[kRotator] = rotator_rad;
   return out;
 }
 
 Eigen::Isometry3d ToolPoseInPart(const CellSetup& cell, const JointVector& q) {
-  Eigen::Isometry3d tool = PartPoseWorld(cell, q[kRotator]).inverse() *
-                           FlangePose(*cell.robot, q) * cell.flange_to_tool_m;
+  Eigen::Isometry3d tool = PartPoseWorld(cell, q[kRotator]).inverse() * FlangePose(*cell.robot, q) *
+                           cell.flange_to_tool_m;
   tool.translation() *= 1000.0;
   return tool;
 }

@@ -79,17 +79,18 @@ class Executor {
     // Sample fractions: line ends, needle events, a coarse IK grid, a fine in-preform grid.
     fractions_.clear();
     events_.clear();
-    const int coarse = std::max(1, static_cast<int>(std::ceil(std::max(
-                                       dist / options_.max_step_mm, angle / options_.max_step_rad))));
+    const int coarse = std::max(
+        1, static_cast<int>(
+               std::ceil(std::max(dist / options_.max_step_mm, angle / options_.max_step_rad))));
     if (advancing) {
       entries_.clear();
       exits_.clear();
       PhaseCrossings(from.drive, to.drive, l, process_.phase_in, entries_);
       PhaseCrossings(from.drive, to.drive, l, process_.phase_out, exits_);
       // Fine samples wherever the needles are in.
-      const int fine = std::max(1, static_cast<int>(std::ceil(
-                                       std::max(dist / options_.in_preform_step_mm,
-                                                angle / options_.in_preform_step_rad))));
+      const int fine =
+          std::max(1, static_cast<int>(std::ceil(std::max(dist / options_.in_preform_step_mm,
+                                                          angle / options_.in_preform_step_rad))));
       for (int i = 1; i < fine; ++i) {
         const double s = static_cast<double>(i) / fine;
         if (process::NeedlesIn(process_, process::CyclePhase(from.drive + s * du, l))) {
@@ -112,6 +113,7 @@ class Executor {
     samples.emplace_back(1.0, SampleEvent::kLineEnd);
     std::stable_sort(samples.begin(), samples.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
+    if (options_.collision != nullptr) SubdivideForCollision(from, to, samples);
     // Coarse-grid samples were tagged kLineEnd above only to mark "solve IK here".
     for (std::size_t i = 0; i < samples.size(); ++i) {
       const auto [s, tag] = samples[i];
@@ -144,17 +146,11 @@ class Executor {
       }
       t.stitch = static_cast<long>(std::floor(t.drive_mm / l - 1e-9)) + 1;
       if (t.stitch < 0) t.stitch = 0;
-      const bool solve = first || last || tag != SampleEvent::kNone;
+      // Joints on the coarse grid and at line ends; needle events and the fine in-preform
+      // samples feed the process rules, which need only the tool pose.
+      const bool solve = first || last || tag == SampleEvent::kLineEnd;
       if (solve) {
-        const double rot = from.rotator_rad + s * (to.rotator_rad - from.rotator_rad);
-        std::optional<double> rail;
-        if (from.rail_mm && to.rail_mm) {
-          rail = *from.rail_mm + s * (*to.rail_mm - *from.rail_mm);
-        } else if (to.rail_mm && s > 0.0) {
-          rail = to.rail_mm;  // the programme takes over the rail on this line
-        }
-        const ToolPoseSolution sol =
-            SolveToolPose(cell_, t.tool_part, rot, rail, have_joints_ ? &joints_ : nullptr);
+        const ToolPoseSolution sol = SolveAt(from, to, s, have_joints_ ? &joints_ : nullptr);
         t.has_joints = true;
         t.ik_status = sol.ik.status;
         t.joints = sol.ik.joints;
@@ -166,7 +162,8 @@ class Executor {
           for (int j = kA1; j <= kA6; ++j) {
             const double d = t.joints[j] - joints_[j];
             if (std::abs(d) > 3.14159265358979323846) {
-              t.joints[j] -= 2 * 3.14159265358979323846 * std::round(d / (2 * 3.14159265358979323846));
+              t.joints[j] -=
+                  2 * 3.14159265358979323846 * std::round(d / (2 * 3.14159265358979323846));
               t.ik_status = IkStatus::kJointLimit;
             }
           }
@@ -181,6 +178,76 @@ class Executor {
     time_s_ += duration;
     current_ = to;
     have_pose_ = true;
+  }
+
+  // IK at fraction s of the line from -> to.
+  ToolPoseSolution SolveAt(const Pose& from, const Pose& to, double s,
+                           const JointVector* previous) const {
+    const double rot = from.rotator_rad + s * (to.rotator_rad - from.rotator_rad);
+    std::optional<double> rail;
+    if (from.rail_mm && to.rail_mm) {
+      rail = *from.rail_mm + s * (*to.rail_mm - *from.rail_mm);
+    } else if (to.rail_mm && s > 0.0) {
+      rail = to.rail_mm;  // the programme takes over the rail on this line
+    }
+    return SolveToolPose(cell_, process::InterpolatePose(from.tool, to.tool, s), rot, rail,
+                         previous);
+  }
+
+  // Clearance at q (0 in contact), from the collision world.
+  double ClearanceAt(const JointVector& q) {
+    CollisionOptions o;
+    const CollisionResult r = options_.collision->Check(q, o);
+    return r.contacts.empty() && r.error.empty() ? r.min_clearance_m : 0.0;
+  }
+
+  // The between-samples guarantee (see ExecuteOptions::collision): walks the IK samples of the
+  // line in order, as the emitting loop will, and inserts fractions where the motion bound
+  // MaxPointTravel to the next sample exceeds the clearance at the previous one.
+  void SubdivideForCollision(const Pose& from, const Pose& to,
+                             std::vector<std::pair<double, SampleEvent>>& samples) {
+    JointVector prev = joints_;
+    bool have_prev = have_joints_ && have_pose_;
+    double prev_s = 0.0;
+    double clearance = have_prev ? ClearanceAt(prev) : 0.0;
+    std::vector<double> extra;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const bool first = i == 0, last = i + 1 == samples.size();
+      if (!(first || last || samples[i].second == SampleEvent::kLineEnd)) continue;
+      if (first && have_pose_) continue;
+      const double s = samples[i].first;
+      ToolPoseSolution sol = SolveAt(from, to, s, have_joints_ || have_prev ? &prev : nullptr);
+      const auto usable = [](const ToolPoseSolution& x) {
+        return x.ik.status != IkStatus::kUnreachable && x.ik.status != IkStatus::kJointLimit;
+      };
+      // In contact (clearance 0) the sample itself reports it: no need to creep on. Near
+      // contact the step never falls below the minimum, so the walk ends.
+      while (have_prev && usable(sol) && clearance > 0.0 &&
+             static_cast<int>(extra.size()) < options_.collision_max_extra_samples) {
+        const double allowed = std::max(clearance, options_.collision_min_clearance_m);
+        const double travel = options_.collision->MaxPointTravel(prev, sol.ik.joints);
+        if (travel <= allowed) break;
+        const double f = std::clamp(allowed / travel, 1.0 / 4096.0, 0.5);
+        const double mid = prev_s + f * (s - prev_s);
+        const ToolPoseSolution m = SolveAt(from, to, mid, &prev);
+        if (!usable(m)) break;
+        extra.push_back(mid);
+        prev = m.ik.joints;
+        prev_s = mid;
+        clearance = ClearanceAt(prev);
+        sol = SolveAt(from, to, s, &prev);
+      }
+      if (usable(sol)) {
+        prev = sol.ik.joints;
+        have_prev = true;
+        clearance = ClearanceAt(prev);
+      }
+      prev_s = s;
+    }
+    if (extra.empty()) return;
+    for (double s : extra) samples.emplace_back(s, SampleEvent::kLineEnd);
+    std::stable_sort(samples.begin(), samples.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
   }
 
   void SeedJoints(const JointVector& q) {
@@ -237,24 +304,22 @@ std::optional<JointVector> ChooseStartBranch(const CellSetup& cell, const progra
   std::vector<Track> tracks;
   JointVector first = JointVector::Zero();
   bool have_first = false;
-  program::Block block;
-  while (reader.Next(block)) {
-    const program::Step& step = state.Update(block);
-    if (ignored.HasErrors()) return std::nullopt;
-    if (!step.is_move) continue;
-    const auto& st = state.State();
-    for (Axis a : {Axis::kX, Axis::kY, Axis::kZ, Axis::kA, Axis::kB, Axis::kC}) {
-      if (!st[a]) return std::nullopt;
-    }
-    Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
-    tool.translation() = Eigen::Vector3d(*st[Axis::kX], *st[Axis::kY], *st[Axis::kZ]) / 1000.0;
-    tool.linear() = geom::RotationFromEuler(
-        order, Eigen::Vector3d(*st[Axis::kA], *st[Axis::kB], *st[Axis::kC]) * kDeg);
-    const double rot = st[Axis::kRotator].value_or(0.0) * kDeg;
+  Eigen::Isometry3d last_tool = Eigen::Isometry3d::Identity();
+  double last_rot = 0.0;
+  struct Pending {
+    Eigen::Isometry3d tool;
+    double rot;
+    std::optional<double> rail_mm;
+  };
+  std::optional<Pending> pending;
+  // Follows every track to one more pose; false if the first pose has no solution.
+  auto visit = [&](const Eigen::Isometry3d& tool, double rot, std::optional<double> rail_mm) {
+    last_tool = tool;
+    last_rot = rot;
     const Eigen::Isometry3d world = PartPoseWorld(cell, rot) * tool;
     RailPolicy policy;
     policy.base_offset_along_rail_m = cell.rail_offset_m;
-    if (st[Axis::kRail]) policy.programmed_rail_m = *st[Axis::kRail] / 1000.0;
+    if (rail_mm) policy.programmed_rail_m = *rail_mm / 1000.0;
     const double rail = RailForTarget(robot, world, policy).rail_m;
     const Eigen::Isometry3d flange = FlangeTargetForTool(world, cell.flange_to_tool_m);
     if (!have_first) {
@@ -268,11 +333,12 @@ std::optional<JointVector> ChooseStartBranch(const CellSetup& cell, const progra
         t.prev = t.lo = t.hi = t.start;
         tracks.push_back(t);
       }
-      if (tracks.empty()) return std::nullopt;
-      continue;
+      if (tracks.empty()) return false;
+      return true;
     }
+    // The solution set does not depend on the hint away from exact singularities: solve once.
+    const ArmIkSolutions all = AllArmIkSolutions(robot, flange, rail, &tracks.front().prev);
     for (Track& t : tracks) {
-      const ArmIkSolutions all = AllArmIkSolutions(robot, flange, rail, &t.prev);
       double best_cost = 1e300;
       ArmJointVector best = t.prev;
       for (int i = 0; i < all.count; ++i) {
@@ -290,7 +356,34 @@ std::optional<JointVector> ChooseStartBranch(const CellSetup& cell, const progra
       t.lo = t.lo.cwiseMin(best);
       t.hi = t.hi.cwiseMax(best);
     }
+    return true;
+  };
+  program::Block block;
+  while (reader.Next(block)) {
+    const program::Step& step = state.Update(block);
+    if (ignored.HasErrors()) return std::nullopt;
+    if (!step.is_move) continue;
+    const auto& st = state.State();
+    for (Axis a : {Axis::kX, Axis::kY, Axis::kZ, Axis::kA, Axis::kB, Axis::kC}) {
+      if (!st[a]) return std::nullopt;
+    }
+    Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
+    tool.translation() = Eigen::Vector3d(*st[Axis::kX], *st[Axis::kY], *st[Axis::kZ]) / 1000.0;
+    tool.linear() = geom::RotationFromEuler(
+        order, Eigen::Vector3d(*st[Axis::kA], *st[Axis::kB], *st[Axis::kC]) * kDeg);
+    const double rot = st[Axis::kRotator].value_or(0.0) * kDeg;
+    // Continuity needs only poses a few degrees apart: skip the ones that barely moved
+    // (but never the last one, kept as `pending`).
+    if (have_first && geom::AngleBetween(last_tool.linear(), tool.linear()) < 0.05 &&
+        (last_tool.translation() - tool.translation()).norm() < 0.2 &&
+        std::abs(rot - last_rot) < 0.05 && !st[Axis::kRail]) {
+      pending = Pending{tool, rot, std::nullopt};
+      continue;
+    }
+    pending.reset();
+    if (!visit(tool, rot, st[Axis::kRail])) return std::nullopt;
   }
+  if (pending && !visit(pending->tool, pending->rot, pending->rail_mm)) return std::nullopt;
   if (!have_first) return std::nullopt;
   std::optional<JointVector> chosen;
   double chosen_cost = 1e300;

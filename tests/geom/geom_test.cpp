@@ -169,8 +169,8 @@ TEST(Stl, WriteReadRoundTripAndMeshSurface) {
   const int nu = 80, nv = 40;
   for (int i = 0; i <= nu; ++i) {
     for (int j = 0; j <= nv; ++j) {
-      mesh.vertices.push_back(poly->Point(
-          Eigen::Vector2d(-200 + 400.0 * i / nu, -80 + 160.0 * j / nv)));
+      mesh.vertices.push_back(
+          poly->Point(Eigen::Vector2d(-200 + 400.0 * i / nu, -80 + 160.0 * j / nv)));
     }
   }
   for (int i = 0; i < nu; ++i) {

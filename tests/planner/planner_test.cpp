@@ -72,7 +72,9 @@ std::vector<Motion> Moves(const std::string& text) {
     m.line = b.source_line;
     m.is_move = true;
     for (std::size_t a = 0; a < program::kAxisCount; ++a) {
-      if (a == static_cast<std::size_t>(Axis::kRail) || a == static_cast<std::size_t>(Axis::kRotator)) continue;
+      if (a == static_cast<std::size_t>(Axis::kRail) ||
+          a == static_cast<std::size_t>(Axis::kRotator))
+        continue;
       m.after[a] = state.State().axes[a].value_or(NAN);
       m.before[a] = state.Previous().axes[a].value_or(NAN);
     }
@@ -120,7 +122,7 @@ double DistanceToPath(const scene::Scene& s, const scene::PathSpec& p, const Eig
   return best;
 }
 
-const char* kScenes[] = {"flat_straight", "circle_8in",  "cutout_slot",
+const char* kScenes[] = {"flat_straight",      "circle_8in",  "cutout_slot",
                          "cylinder_r90_frame", "arcs_planar", "blade_demo"};
 
 TEST(DecoupledProgramme, LineStructureBookkeepingAndPointsOnThePath) {
@@ -145,7 +147,8 @@ TEST(DecoupledProgramme, LineStructureBookkeepingAndPointsOnThePath) {
         EXPECT_EQ(At(rot, Axis::kDrive), At(tr, Axis::kDrive)) << "line " << rot.line;
         EXPECT_EQ(At(rot, Axis::kPathLength), At(tr, Axis::kPathLength)) << "line " << rot.line;
         // Translation lines keep the previous A B C.
-        for (Axis a : {Axis::kA, Axis::kB, Axis::kC}) EXPECT_TRUE(Same(tr, a)) << "line " << tr.line;
+        for (Axis a : {Axis::kA, Axis::kB, Axis::kC})
+          EXPECT_TRUE(Same(tr, a)) << "line " << tr.line;
         // Rotation lines change only A B C.
         for (Axis a : {Axis::kX, Axis::kY, Axis::kZ, Axis::kDrive, Axis::kPathLength}) {
           EXPECT_TRUE(Same(rot, a)) << "line " << rot.line;
@@ -172,7 +175,8 @@ TEST(DecoupledProgramme, StitchPointsAreEquallySpacedAlongThePath) {
   for (const auto& st : stitches) {
     const geom::PathPoint expected = path.AtArcLength(st.arc_length_end_mm);
     EXPECT_LT((expected.position - st.end.translation()).norm(), 1e-9);
-    EXPECT_LT((st.start.translation() - st.end.translation()).norm(), planner->StitchLengthMm() + 1e-9);
+    EXPECT_LT((st.start.translation() - st.end.translation()).norm(),
+              planner->StitchLengthMm() + 1e-9);
   }
 }
 
@@ -199,8 +203,7 @@ TEST(Programme, RoundTripsThroughTheParserAndWriter) {
         const auto blocks =
             program::ParseString(w.text, program::Dialect::Default(), "a.nc", sink, &header);
         ASSERT_FALSE(sink.HasErrors());
-        const std::string again =
-            program::WriteProgramString(blocks, program::Dialect::Default());
+        const std::string again = program::WriteProgramString(blocks, program::Dialect::Default());
         program::ProgramHeader header2;
         const auto blocks2 =
             program::ParseString(again, program::Dialect::Default(), "b.nc", sink, &header2);

@@ -36,7 +36,7 @@ TEST_P(RenderEveryScene, PngShowsRobotHeadMoldAndPath) {
   const fs::path cov = out / "coverage.json";
   fs::remove(png);
   ASSERT_EQ(RunCli("render --scene " + (kSource / "scenes" / (name + ".yaml")).string() + " -o " +
-                png.string() + " --width 800 --height 600 --coverage-json " + cov.string()),
+                   png.string() + " --width 800 --height 600 --coverage-json " + cov.string()),
             0);
   Image img;
   std::string err;
@@ -64,8 +64,8 @@ TEST(Render, HeadViewIsAClosePicture) {
   const fs::path png = fs::temp_directory_path() / "stitchsim_render_head.png";
   const fs::path cov = fs::temp_directory_path() / "stitchsim_render_head.json";
   ASSERT_EQ(RunCli("render --scene " + (kSource / "scenes/circle_8in.yaml").string() +
-                " --view head -o " + png.string() + " --width 640 --height 480 --coverage-json " +
-                cov.string()),
+                   " --view head -o " + png.string() +
+                   " --width 640 --height 480 --coverage-json " + cov.string()),
             0);
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(cov));
   EXPECT_GT(j["pixels"]["head"].get<long>(), 640L * 480L / 20) << j.dump();
@@ -76,17 +76,18 @@ TEST(Render, BadInputExitsTwoAndWritesNothing) {
   fs::remove(png);
   EXPECT_EQ(RunCli("render --scene /nonexistent.yaml -o " + png.string()), 2);
   EXPECT_EQ(RunCli("render --scene " + (kSource / "scenes/circle_8in.yaml").string() + " -o " +
-                png.string() + " --width 0"),
+                   png.string() + " --width 0"),
             2);
   EXPECT_EQ(RunCli("render --scene " + (kSource / "scenes/circle_8in.yaml").string() + " -o " +
-                png.string() + " --view sideways"),
+                   png.string() + " --view sideways"),
             2);
   EXPECT_FALSE(fs::exists(png));
 }
 
 TEST(SceneModel, ComposedModelCompilesForEveryHead) {
   for (const char* head : {"rs535", "rs566", "afp"}) {
-    const fs::path p = fs::temp_directory_path() / (std::string("stitchsim_head_") + head + ".yaml");
+    const fs::path p =
+        fs::temp_directory_path() / (std::string("stitchsim_head_") + head + ".yaml");
     std::ofstream(p) << "stitchsim_scene: 1\nname: h\nunits: mm\nhead: " << head
                      << "\npart: {mount: rotator}\nsurface: {type: plane, size: [500, 500]}\n"
                         "paths: [{name: a, type: line, from: [0, 0], to: [100, 0]}]\n";
@@ -104,10 +105,10 @@ TEST(SceneModel, ComposedModelCompilesForEveryHead) {
     const Eigen::Quaterniond q(m->site_quat[4 * site], m->site_quat[4 * site + 1],
                                m->site_quat[4 * site + 2], m->site_quat[4 * site + 3]);
     EXPECT_LT((pos - scene->head.flange_to_tool_m.translation()).norm(), 1e-9) << head;
-    EXPECT_LT(Eigen::AngleAxisd(q.toRotationMatrix().transpose() *
-                                scene->head.flange_to_tool_m.linear())
-                  .angle(),
-              1e-9)
+    EXPECT_LT(
+        Eigen::AngleAxisd(q.toRotationMatrix().transpose() * scene->head.flange_to_tool_m.linear())
+            .angle(),
+        1e-9)
         << head;
     // The part rides on the rotator body.
     const int part = mj_name2id(m.get(), mjOBJ_BODY, "part");

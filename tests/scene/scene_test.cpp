@@ -1,11 +1,11 @@
 // Scene loading: every bundled scene loads clean; broken scenes give file:line diagnostics.
+#include "stitchsim/scene/scene.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-
-#include "stitchsim/scene/scene.h"
 
 namespace stitchsim::scene {
 namespace {
@@ -138,8 +138,9 @@ INSTANTIATE_TEST_SUITE_P(
                    "part: {mount: table}\nsurface: {type: plane, size: [100, .nan]}\n"
                    "paths: [{name: a, type: line, from: [0, 0], to: [20, 0]}]\n",
                    "scene-not-finite", 6},
-        BrokenCase{"missing_stl", "part: {mount: table}\nsurface: {type: mesh, file: nope.stl}\n"
-                                  "paths: [{name: a, type: line, from: [0, 0], to: [20, 0]}]\n",
+        BrokenCase{"missing_stl",
+                   "part: {mount: table}\nsurface: {type: mesh, file: nope.stl}\n"
+                   "paths: [{name: a, type: line, from: [0, 0], to: [20, 0]}]\n",
                    "scene-missing-file", 6},
         BrokenCase{"unknown_head_type",
                    "part: {mount: shelf}\nsurface: {type: plane, size: [100, 100]}\n"
@@ -158,7 +159,8 @@ INSTANTIATE_TEST_SUITE_P(
                    "paths:\n  - {name: a, type: line, from: [0, 0], to: [20, 0]}\n"
                    "  - {name: a, type: line, from: [0, 5], to: [20, 5]}\n",
                    "scene-duplicate-name", 9},
-        BrokenCase{"missing_paths", "part: {mount: table}\nsurface: {type: plane, size: [100, 100]}\n",
+        BrokenCase{"missing_paths",
+                   "part: {mount: table}\nsurface: {type: plane, size: [100, 100]}\n",
                    "scene-missing-key", 1},
         BrokenCase{"number_is_text",
                    "part: {mount: table}\nsurface: {type: plane, size: [100, 100]}\n"
@@ -203,8 +205,8 @@ TEST(Scene, UnknownHead) {
 TEST(Scene, BrokenHeadSpecPointsIntoTheHeadFile) {
   const auto head = WriteTemp("broken_head.yaml", "stitchsim_head: 1\nname: x\nkind: laser\n");
   const auto p = WriteTemp("uses_broken_head.yaml",
-                           "stitchsim_scene: 1\nname: b\nunits: mm\nhead: " + head.string() +
-                               "\n" + kPart + kPlane + kPath);
+                           "stitchsim_scene: 1\nname: b\nunits: mm\nhead: " + head.string() + "\n" +
+                               kPart + kPlane + kPath);
   DiagnosticSink sink;
   EXPECT_EQ(LoadScene(p, sink), nullptr);
   ASSERT_TRUE(sink.HasErrors());

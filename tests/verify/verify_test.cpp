@@ -164,8 +164,10 @@ TEST(Verify, CylinderChordStitchWidthVariesAboutSixPercent) {
   const double chord = (b - a).norm();
   const int n = *geom::StitchCount(chord, 5.0);
   const double ls = chord / n;
-  const Eigen::Matrix3d frame = *geom::FrameFromNormalAndDirection(s.Normal(p.curve->Start()), b - a);
-  const Eigen::Vector3d abc = geom::EulerFromRotation(geom::EulerOrder{}, frame) * 180.0 / 3.14159265358979;
+  const Eigen::Matrix3d frame =
+      *geom::FrameFromNormalAndDirection(s.Normal(p.curve->Start()), b - a);
+  const Eigen::Vector3d abc =
+      geom::EulerFromRotation(geom::EulerOrder{}, frame) * 180.0 / 3.14159265358979;
   std::ostringstream prog;
   prog.precision(10);
   prog << "%\n(STITCHSIM stitch_length_mm=" << ls << ")\nG21 G90\nT1 M6\n";
@@ -225,7 +227,8 @@ TEST(Verify, FaultyProgrammesAreCaughtWithTheirLine) {
   }
   {  // A rotation line that advances U: the head turns with the needles in.
     const Outcome o = Verify(
-        l, std::string(kHead) + "G1 X5 U5 V5 F1500\nG1 C-80 U10 V10\nG1 X10 U15 V15\nM30\n%\n", 5.0);
+        l, std::string(kHead) + "G1 X5 U5 V5 F1500\nG1 C-80 U10 V10\nG1 X10 U15 V15\nM30\n%\n",
+        5.0);
     ASSERT_GT(o.Errors("needle.rotation_in_preform"), 0) << Describe(o);
     EXPECT_EQ(o.Rule("needle.rotation_in_preform")->findings.front().line, 7);
     ASSERT_GT(o.Errors("program.sync"), 0);
@@ -234,15 +237,15 @@ TEST(Verify, FaultyProgrammesAreCaughtWithTheirLine) {
   }
   {  // U and V disagree with each other, and V with the tool travel.
     const Outcome o = Verify(
-        l, std::string(kHead) + "G1 X5 U5 V5 F1500\nG1 X10 U10 V12\nG1 X15 U20 V20\nM30\n%\n",
-        5.0);
+        l, std::string(kHead) + "G1 X5 U5 V5 F1500\nG1 X10 U10 V12\nG1 X15 U20 V20\nM30\n%\n", 5.0);
     const RuleSummary* sync = o.Rule("program.sync");
     ASSERT_EQ(sync->errors, 2) << Describe(o);
     EXPECT_EQ(sync->findings[0].line, 7);
     EXPECT_EQ(sync->findings[1].line, 8);
   }
   {  // NaN is bad input with its line, never a report.
-    const Outcome o = Verify(l, std::string(kHead) + "G1 X5 U5 V5 F1500\nG1 Xnan U10 V10\n%\n", 5.0);
+    const Outcome o =
+        Verify(l, std::string(kHead) + "G1 X5 U5 V5 F1500\nG1 Xnan U10 V10\n%\n", 5.0);
     EXPECT_FALSE(o.input_ok);
     ASSERT_FALSE(o.diagnostics.empty());
     EXPECT_EQ(o.diagnostics.front().location.line, 7);
@@ -269,7 +272,8 @@ TEST(Verify, SideForceRuleOnAHandMadeTrace) {
     s.needles_in = true;
     s.event = i == 0 ? sim::SampleEvent::kNeedleEntry
                      : (i == 10 ? sim::SampleEvent::kNeedleExit : sim::SampleEvent::kNone);
-    s.tool_part.linear() = Eigen::AngleAxisd(yaw * i / 10, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    s.tool_part.linear() =
+        Eigen::AngleAxisd(yaw * i / 10, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     v.OnSample(s);
   }
   Report r;

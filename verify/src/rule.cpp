@@ -30,8 +30,7 @@ void Rule::Observe(double value, int line, long stitch, const sim::TraceSample* 
 }
 
 void Rule::Record(FindingSeverity severity, double value, double limit, int line, long stitch,
-                  const std::string& subject, std::string message,
-                  const sim::TraceSample* sample) {
+                  const std::string& subject, std::string message, const sim::TraceSample* sample) {
   if (severity == FindingSeverity::kError) {
     ++summary_.errors;
   } else {
@@ -57,33 +56,35 @@ void Rule::Record(FindingSeverity severity, double value, double limit, int line
   summary_.findings.push_back(std::move(f));
 }
 
-std::optional<FindingSeverity> Rule::CheckUpper(double value, int line, long stitch,
-                                                const std::string& subject,
-                                                const std::string& what,
-                                                const sim::TraceSample* sample) {
+std::optional<FindingSeverity> Rule::Classify(double value, int line, long stitch,
+                                              const sim::TraceSample* sample) {
   ++summary_.checked;
   const bool new_worst = !summary_.worst_value || value > *summary_.worst_value;
   Observe(value, line, stitch, nullptr);
   std::optional<FindingSeverity> sev;
-  double limit = 0.0;
   if (summary_.error_limit && value > *summary_.error_limit) {
     sev = FindingSeverity::kError;
-    limit = *summary_.error_limit;
   } else if (summary_.warning_limit && value > *summary_.warning_limit) {
     sev = FindingSeverity::kWarning;
-    limit = *summary_.warning_limit;
-  }
-  if (sev) {
-    char buf[256];
-    std::snprintf(buf, sizeof(buf), "%s %.4g %s exceeds the %s limit of %.4g %s", what.c_str(),
-                  value, summary_.unit.c_str(),
-                  *sev == FindingSeverity::kError ? "error" : "warning", limit,
-                  summary_.unit.c_str());
-    Record(*sev, value, limit, line, stitch, subject, buf, nullptr);
   }
   // Keep the snapshot at the worst offending sample.
   if (sample != nullptr && new_worst && (sev || !worst_sample_)) worst_sample_ = *sample;
   return sev;
+}
+
+void Rule::RecordExceeded(FindingSeverity severity, double value, int line, long stitch,
+                          const std::string& subject, const std::string& what,
+                          const sim::TraceSample* sample) {
+  const double limit =
+      severity == FindingSeverity::kError ? *summary_.error_limit : *summary_.warning_limit;
+  char buf[256];
+  std::snprintf(buf, sizeof(buf), "%s %.4g %s exceeds the %s limit of %.4g %s", what.c_str(), value,
+                summary_.unit.c_str(), severity == FindingSeverity::kError ? "error" : "warning",
+                limit, summary_.unit.c_str());
+  const bool keep_sample = worst_sample_.has_value();
+  Record(severity, value, limit, line, stitch, subject, buf, nullptr);
+  (void)sample;
+  (void)keep_sample;
 }
 
 }  // namespace stitchsim::verify

@@ -43,8 +43,8 @@ class RotationInPreformRule final : public Rule {
       if (limit_deg_[i] && values[i] > *limit_deg_[i]) {
         Record(FindingSeverity::kError, values[i], *limit_deg_[i], w.exit_line, w.stitch, names[i],
                "head rotated " + Fmt("%.3g", values[i]) + " deg (" + names[i] +
-                   ") while the needles were in the preform; limit " +
-                   Fmt("%.3g", *limit_deg_[i]) + " deg",
+                   ") while the needles were in the preform; limit " + Fmt("%.3g", *limit_deg_[i]) +
+                   " deg",
                &w.exit_sample);
         break;
       }
@@ -71,9 +71,14 @@ class SideForceRule final : public Rule {
     const auto& needles = ctx_.process->needles;
     for (std::size_t k = 0; k < needles.size(); ++k) {
       const double v = w.metrics.side_force_mm[k];
-      std::string what = "side-force proxy on the " + needles[k].name + " needle";
-      if (stiffness_) what += Fmt(" (about %.3g N)", v * *stiffness_);
-      CheckUpper(v, w.exit_line, w.stitch, needles[k].name, what, &w.exit_sample);
+      CheckUpper(
+          v, w.exit_line, w.stitch, needles[k].name,
+          [&] {
+            std::string what = "side-force proxy on the " + needles[k].name + " needle";
+            if (stiffness_) what += Fmt(" (about %.3g N)", v * *stiffness_);
+            return what;
+          },
+          &w.exit_sample);
     }
   }
 
@@ -91,8 +96,9 @@ class WalkRule final : public Rule {
     summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_mm");
   }
   void OnWindow(const WindowRecord& w) override {
-    CheckUpper(w.metrics.walk_demand_mm, w.exit_line, w.stitch, "walk", "walk demand",
-               &w.exit_sample);
+    CheckUpper(
+        w.metrics.walk_demand_mm, w.exit_line, w.stitch, "walk",
+        [] { return std::string("walk demand"); }, &w.exit_sample);
   }
 };
 
@@ -112,6 +118,13 @@ class StitchLengthRule final : public Rule {
     insertion_error_ = LimitOf(ctx, summary_.id, "insertion_error_pct");
     insertion_warning_ = LimitOf(ctx, summary_.id, "insertion_warning_pct");
   }
+  // A seam ends where the head moves with the needles out (a jump or a reposition) or
+  // stitching is switched off: the next penetration starts a new seam.
+  void OnLine(const sim::LineRecord& l) override {
+    const bool drive = l.drive_to_mm - l.drive_from_mm > 1e-9;
+    const bool travels = (l.to.translation() - l.from.translation()).norm() > 1e-6;
+    if ((!drive && travels) || !l.stitching || l.head_retracted) previous_.reset();
+  }
   void OnPenetration(const PenetrationRecord& p) override {
     const auto& needles = ctx_.process->needles;
     if (previous_ && previous_->stitch == p.stitch - 1) {
@@ -123,10 +136,12 @@ class StitchLengthRule final : public Rule {
         // Stitch k-1 ends where stitch k starts: report it on the earlier stitch.
         const bool at_tool_point = needles[k].through_mm.norm() < 1e-9;
         if (at_tool_point) {
-          CheckUpper(dev, p.line, p.stitch - 1, needles[k].name,
-                     needles[k].name + " needle stitch of " + Fmt("%.4g", len) +
-                         " mm: deviation",
-                     &p.sample);
+          CheckUpper(
+              dev, p.line, p.stitch - 1, needles[k].name,
+              [&] {
+                return needles[k].name + " needle stitch of " + Fmt("%.4g", len) + " mm: deviation";
+              },
+              &p.sample);
         } else {
           Counted();
           Observe(dev, p.line, p.stitch - 1, nullptr);
@@ -169,9 +184,10 @@ class StitchWidthRule final : public Rule {
     if (!p.points[0] || !p.points[1]) return;
     const double width = (*p.points[1] - *p.points[0]).norm();
     const double dev = (width - nominal) / nominal * 100.0;
-    CheckUpper(std::abs(dev), p.line, p.stitch, "width",
-               Fmt("stitch width %.4g mm (%+.3g %% from nominal); deviation", width, dev),
-               &p.sample);
+    CheckUpper(
+        std::abs(dev), p.line, p.stitch, "width",
+        [&] { return Fmt("stitch width %.4g mm (%+.3g %% from nominal); deviation", width, dev); },
+        &p.sample);
   }
 
  private:
@@ -188,26 +204,31 @@ class StandoffRule final : public Rule {
   }
   void OnPenetration(const PenetrationRecord& p) override {
     const double d = p.foot.signed_distance_mm;
-    CheckUpper(std::abs(d), p.line, p.stitch, "tool point",
-               std::string("tool point ") + (d < 0 ? "below" : "above") +
-                   " the stitching surface; standoff",
-               &p.sample);
+    CheckUpper(
+        std::abs(d), p.line, p.stitch, "tool point",
+        [&] {
+          return std::string("tool point ") + (d < 0 ? "below" : "above") +
+                 " the stitching surface; standoff";
+        },
+        &p.sample);
   }
 };
 
 class NormalityRule final : public Rule {
  public:
   explicit NormalityRule(const RuleContext& ctx)
-      : Rule("stitch.normality", "angle between the head z axis and the surface normal at needle "
-                                 "entry",
+      : Rule("stitch.normality",
+             "angle between the head z axis and the surface normal at needle "
+             "entry",
              "deg") {
     summary_.error_limit = LimitOf(ctx, summary_.id, "error_deg");
     summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_deg");
   }
   void OnPenetration(const PenetrationRecord& p) override {
     const double c = std::clamp(p.tool.linear().col(2).dot(p.foot.normal), -1.0, 1.0);
-    CheckUpper(std::acos(c) * kRadToDeg, p.line, p.stitch, "head z", "head tilt from the normal",
-               &p.sample);
+    CheckUpper(
+        std::acos(c) * kRadToDeg, p.line, p.stitch, "head z",
+        [] { return std::string("head tilt from the normal"); }, &p.sample);
   }
 };
 
@@ -337,33 +358,32 @@ class ConfigFlipRule final : public IkStatusRule {
 class JointSpeedRule final : public Rule {
  public:
   explicit JointSpeedRule(const RuleContext& ctx)
-      : Rule("kin.joint_speed", "joint speed at the programmed feed against the URDF maximum",
-             "%"),
+      : Rule("kin.joint_speed", "joint speed at the programmed feed against the URDF maximum", "%"),
         robot_(ctx.robot) {
     summary_.error_limit = 100.0 * LimitOf(ctx, summary_.id, "max_fraction").value_or(1.0);
     summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_pct");
   }
   void OnSample(const sim::TraceSample& s) override {
     if (!s.has_joints) return;
-    const bool usable = s.ik_status != sim::IkStatus::kUnreachable &&
-                        s.ik_status != sim::IkStatus::kJointLimit;
+    const bool usable =
+        s.ik_status != sim::IkStatus::kUnreachable && s.ik_status != sim::IkStatus::kJointLimit;
     if (have_ && usable) {
       const double dt = s.time_s - time_;
       if (dt > 1e-9) {
         double worst = 0.0;
         int joint = 0;
         for (int j = 0; j < sim::kNumJoints; ++j) {
-          const double pct = std::abs(s.joints[j] - q_[j]) / dt / robot_->max_velocities()[j] * 100.0;
+          const double pct =
+              std::abs(s.joints[j] - q_[j]) / dt / robot_->max_velocities()[j] * 100.0;
           if (pct > worst) {
             worst = pct;
             joint = j;
           }
         }
-        CheckUpper(worst, s.source_line, s.stitch,
-                   std::string(sim::kJointNames[static_cast<std::size_t>(joint)]),
-                   "joint " + std::string(sim::kJointNames[static_cast<std::size_t>(joint)]) +
-                       " speed (of its maximum)",
-                   &s);
+        const std::string name(sim::kJointNames[static_cast<std::size_t>(joint)]);
+        CheckUpper(
+            worst, s.source_line, s.stitch, name,
+            [&] { return "joint " + name + " speed (of its maximum)"; }, &s);
       }
     }
     if (usable) {
@@ -415,9 +435,9 @@ class SyncRule final : public Rule {
     if (dv > tol || (du > tol && travel > tol) || (du > tol && travel <= tol)) {
       const double excess = dv - travel;
       if (excess < -tol || excess > tol + sag_fraction_ * dv) {
-        flag(std::abs(excess), "V-travel",
-             Fmt("the path length advances %.4g mm but the tool point travels %.4g mm", dv,
-                 travel));
+        flag(
+            std::abs(excess), "V-travel",
+            Fmt("the path length advances %.4g mm but the tool point travels %.4g mm", dv, travel));
         return;
       }
     }
@@ -450,6 +470,11 @@ class EmptyProgramRule final : public Rule {
 
 }  // namespace
 
+// collision_rules.cpp
+std::unique_ptr<Rule> MakeCollisionHeadMoldRule(const RuleContext& ctx);
+std::unique_ptr<Rule> MakeCollisionRobotCellRule(const RuleContext& ctx);
+std::unique_ptr<Rule> MakeCollisionClearanceRule(const RuleContext& ctx);
+
 std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   std::vector<std::unique_ptr<Rule>> rules;
   const bool stitching = ctx.scene->head.IsStitching();
@@ -469,6 +494,9 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   rules.push_back(std::make_unique<JointSpeedRule>(ctx));
   rules.push_back(std::make_unique<SyncRule>(ctx));
   if (stitching) rules.push_back(std::make_unique<EmptyProgramRule>());
+  if (ctx.collision != nullptr) rules.push_back(MakeCollisionHeadMoldRule(ctx));
+  if (ctx.collision != nullptr) rules.push_back(MakeCollisionRobotCellRule(ctx));
+  if (ctx.collision != nullptr) rules.push_back(MakeCollisionClearanceRule(ctx));
   return rules;
 }
 

@@ -18,6 +18,11 @@ class CurveSegment {
   virtual ~CurveSegment() = default;
   virtual Eigen::Vector2d At(double t) const = 0;
   virtual Eigen::Vector2d Derivative(double t) const = 0;
+  /// At(t) and Derivative(t) together (segments override it to share work, e.g. sin/cos).
+  virtual void Evaluate(double t, Eigen::Vector2d& point, Eigen::Vector2d& derivative) const {
+    point = At(t);
+    derivative = Derivative(t);
+  }
 };
 
 std::unique_ptr<CurveSegment> MakeLineSegment(Eigen::Vector2d from, Eigen::Vector2d to);
@@ -63,6 +68,11 @@ class SurfacePath {
   bool Closed() const { return closed_; }
   /// The point at arc length s (clamped to [0, Length()]).
   PathPoint AtArcLength(double s_mm) const;
+  /// As AtArcLength(s_mm), with the first guess taken from `near`, a point this path
+  /// returned (e.g. the previous stitch): fewer Newton steps on curves of varying speed.
+  PathPoint AtArcLengthFrom(const PathPoint& near, double s_mm) const;
+  /// The segment holding arc length s (clamped): AtArcLength(s_mm).segment without solving.
+  std::size_t SegmentAtArcLength(double s_mm) const;
   /// The point at (segment, t).
   PathPoint At(std::size_t segment, double t) const;
   /// Arc length of the lifted path from (segment 0, t 0) to (segment, t).
@@ -72,6 +82,10 @@ class SurfacePath {
 
  private:
   double SegmentLength(std::size_t segment, double t0, double t1) const;
+  std::size_t KnotIntervalAt(std::size_t segment, double local_s_mm) const;
+  PathPoint PointAt(std::size_t segment, double t, double s_mm) const;
+  PathPoint SolveInKnotInterval(std::size_t segment, std::size_t knot, double s_mm,
+                                const PathPoint* near) const;
   const Surface* surface_;
   const Curve2* curve_;
   bool closed_ = false;

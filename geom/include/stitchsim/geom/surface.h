@@ -20,9 +20,9 @@ struct Domain2 {
 
 /// Result of a closest-point query.
 struct SurfaceProjection {
-  Eigen::Vector2d uv = Eigen::Vector2d::Zero();         ///< parameter of the foot point (mm)
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();      ///< foot point, part frame (mm)
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();    ///< unit normal at the foot point
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();       ///< parameter of the foot point (mm)
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();    ///< foot point, part frame (mm)
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit normal at the foot point
   double signed_distance_mm = 0.0;  ///< query point minus foot point, along the normal
   bool inside_domain = true;        ///< false if the foot point was clamped to the domain
 };
@@ -75,8 +75,7 @@ std::unique_ptr<Surface> MakeMeshSurface(TriangleMesh mesh);
 /// Tessellates a closed slab between the surface and the surface offset along the normal by
 /// `offset_bottom_mm` .. `offset_top_mm` (a solid with side walls). Used for the mold
 /// (e.g. -depth..0) and the preform (0..thickness).
-TriangleMesh TessellateSlab(const Surface& surface, const Domain2& domain,
-                            double offset_bottom_mm, double offset_top_mm,
-                            double chord_tol_mm);
+TriangleMesh TessellateSlab(const Surface& surface, const Domain2& domain, double offset_bottom_mm,
+                            double offset_top_mm, double chord_tol_mm);
 
 }  // namespace stitchsim::geom

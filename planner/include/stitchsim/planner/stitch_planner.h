@@ -29,17 +29,17 @@ struct StitchPlanOptions {
 
 /// One stitch as planned. Poses are tool-point poses in the part frame (translation mm).
 struct PlannedStitch {
-  int index = 0;                        ///< 1-based
-  Eigen::Isometry3d start;              ///< frame of this stitch at its start point
-  Eigen::Isometry3d end;                ///< frame of the next stitch at this stitch's end point
-  double arc_length_end_mm = 0.0;       ///< = index * stitch length
-  std::string segment_label;            ///< 2D segment the stitch's chord midpoint is on
-  bool decoupled = false;               ///< translation then rotation (two lines)
+  int index = 0;                   ///< 1-based
+  Eigen::Isometry3d start;         ///< frame of this stitch at its start point
+  Eigen::Isometry3d end;           ///< frame of the next stitch at this stitch's end point
+  double arc_length_end_mm = 0.0;  ///< = index * stitch length
+  std::string segment_label;       ///< 2D segment the stitch's chord midpoint is on
+  bool decoupled = false;          ///< translation then rotation (two lines)
   /// What a coupled line would do to the needles (the auto-mode decision input), always
   /// computed: side force per needle, rotation in the preform.
   process::WindowMetrics coupled;
-  std::string exceeded_limit;           ///< rule the coupled stitch would break; empty if none
-  double rotation_rad = 0.0;            ///< head rotation from start to end frame
+  std::string exceeded_limit;  ///< rule the coupled stitch would break; empty if none
+  double rotation_rad = 0.0;   ///< head rotation from start to end frame
 };
 
 /// Time estimate (seconds), from the head spec: feed from the stitch rate, rotation lines at

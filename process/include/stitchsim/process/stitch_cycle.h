@@ -22,9 +22,9 @@ struct ProcessModel {
   double phase_in = 0.15;                  ///< cycle fraction: needles enter the preform
   double phase_out = 0.85;                 ///< cycle fraction: needles leave it
   double walk_capacity_mm = 4.0;
-  double preform_thickness_mm = 12.0;      ///< preform occupies tool z in [0, thickness]
-  double stitch_length_mm = 5.0;           ///< the drive advance of one stitch cycle
-  double nominal_width_mm = 17.0;          ///< insertion-catcher spacing (0: one needle)
+  double preform_thickness_mm = 12.0;  ///< preform occupies tool z in [0, thickness]
+  double stitch_length_mm = 5.0;       ///< the drive advance of one stitch cycle
+  double nominal_width_mm = 17.0;      ///< insertion-catcher spacing (0: one needle)
   /// Heights (tool z, mm) of the shaft points followed through the preform.
   std::vector<double> shaft_heights_mm;
 };

@@ -18,17 +18,17 @@ enum class HeadKind { kSingleSidedStitch, kDoubleSidedStitch, kAfp };
 /// A needle as a line in the tool frame.
 struct NeedleSpec {
   std::string name;
-  Eigen::Vector3d through_mm = Eigen::Vector3d::Zero();  ///< axis crossing of the plane z = 0
+  Eigen::Vector3d through_mm = Eigen::Vector3d::Zero();   ///< axis crossing of the plane z = 0
   Eigen::Vector3d direction = -Eigen::Vector3d::UnitZ();  ///< unit, into the preform
 };
 
 /// Stitch-cycle parameters (stitching heads).
 struct StitchProcessSpec {
   double nominal_length_mm = 5.0;
-  double width_mm = 17.0;          ///< insertion-catcher spacing on the surface (RS535)
-  double phase_in = 0.15;          ///< cycle fraction when the needles enter the preform
-  double phase_out = 0.85;         ///< cycle fraction when they leave it
-  double walk_capacity_mm = 4.0;   ///< needle walk available per stitch
+  double width_mm = 17.0;         ///< insertion-catcher spacing on the surface (RS535)
+  double phase_in = 0.15;         ///< cycle fraction when the needles enter the preform
+  double phase_out = 0.85;        ///< cycle fraction when they leave it
+  double walk_capacity_mm = 4.0;  ///< needle walk available per stitch
   double preform_thickness_mm = 12.0;
   double stitch_rate_per_min = 300.0;
   double rotation_speed_deg_s = 30.0;
@@ -54,7 +54,7 @@ struct HeadSpec {
   std::string description;
   HeadKind kind = HeadKind::kSingleSidedStitch;
   int tool_number = 1;
-  std::filesystem::path mjcf;       ///< absolute path of the head's MJCF fragment
+  std::filesystem::path mjcf;  ///< absolute path of the head's MJCF fragment
   Eigen::Isometry3d flange_to_tool_m = Eigen::Isometry3d::Identity();  ///< metres
   std::vector<NeedleSpec> needles;
   StitchProcessSpec stitch;

@@ -26,7 +26,7 @@ struct Constraint {
   enum class Shape { kBox, kMesh } shape = Shape::kBox;
   Eigen::Isometry3d pose_mm = Eigen::Isometry3d::Identity();  ///< box centre, part frame
   Eigen::Vector3d size_mm = Eigen::Vector3d::Zero();          ///< box full extents
-  geom::TriangleMesh mesh;                                     ///< part frame, mm
+  geom::TriangleMesh mesh;                                    ///< part frame, mm
   SourceLocation where;
 };
 
@@ -53,7 +53,7 @@ struct Scene {
   std::vector<Constraint> constraints;
   std::vector<PathSpec> paths;
   double nominal_stitch_length_mm = 5.0;
-  RuleLimits limits;  ///< head defaults merged with the scene's overrides
+  RuleLimits limits;            ///< head defaults merged with the scene's overrides
   double rail_offset_mm = 0.0;  ///< rail policy: carriage x minus tool x (world), preferred
 
   const PathSpec* FindPath(const std::string& path_name) const;

@@ -18,6 +18,8 @@ struct CellSetup {
   scene::Mount mount = scene::Mount::kTable;
   Eigen::Isometry3d mount_to_part_m = Eigen::Isometry3d::Identity();
   double rail_offset_m = 0.0;  ///< rail policy: arm base minus tool target along the rail
+  /// World pose of the part when it does not move (table mount), computed once.
+  std::optional<Eigen::Isometry3d> fixed_part_world_m;
   IkOptions ik;
 };
 
@@ -32,8 +34,8 @@ Eigen::Isometry3d PartPoseWorld(const CellSetup& cell, double rotator_rad);
 JointVector HomeJoints(const RobotModel& robot, double rail_m);
 
 struct ToolPoseSolution {
-  IkResult ik;                  ///< status and joints (model order)
-  RailPlacement rail;           ///< where the rail went and why
+  IkResult ik;         ///< status and joints (model order)
+  RailPlacement rail;  ///< where the rail went and why
   Eigen::Isometry3d tool_world_m = Eigen::Isometry3d::Identity();  ///< the target, world
 };
 

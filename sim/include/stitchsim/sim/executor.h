@@ -12,6 +12,7 @@
 #include "stitchsim/program/dialect.h"
 #include "stitchsim/program/reader.h"
 #include "stitchsim/sim/cell.h"
+#include "stitchsim/sim/collision.h"
 #include "stitchsim/sim/trace.h"
 
 namespace stitchsim::sim {
@@ -20,17 +21,28 @@ namespace stitchsim::sim {
 /// event: needle entry/exit are exact events; joint checks run on the coarse grid, the
 /// needle rules on the fine in-preform grid.
 struct ExecuteOptions {
-  double max_step_mm = 20.0;              ///< IK grid: translation per step
-  double max_step_rad = 0.034906585;      ///< IK grid: rotation per step (2 deg)
-  double in_preform_step_mm = 0.5;        ///< needles in: translation per sample
-  double in_preform_step_rad = 0.0017453; ///< needles in: rotation per sample (0.1 deg)
-  double rapid_speed_mm_s = 500.0;        ///< G0 translation speed
-  double rotation_speed_rad_s = 0.5235988;///< pure-rotation speed (head spec)
-  double stitch_rate_per_min = 300.0;     ///< drive revolutions per minute
-  double settle_time_s = 0.15;            ///< dwell after a pure rotation line
+  double max_step_mm = 20.0;                ///< IK grid: translation per step
+  double max_step_rad = 0.034906585;        ///< IK grid: rotation per step (2 deg)
+  double in_preform_step_mm = 0.5;          ///< needles in: translation per sample
+  double in_preform_step_rad = 0.0017453;   ///< needles in: rotation per sample (0.1 deg)
+  double rapid_speed_mm_s = 500.0;          ///< G0 translation speed
+  double rotation_speed_rad_s = 0.5235988;  ///< pure-rotation speed (head spec)
+  double stitch_rate_per_min = 300.0;       ///< drive revolutions per minute
+  double settle_time_s = 0.15;              ///< dwell after a pure rotation line
   /// Look ahead over the whole programme (seekable input only) to start a4 and a6 on the
   /// 2 pi branch that keeps their full travel within limits.
   bool choose_start_branch = true;
+  /// When set, each line is subdivided (extra IK samples, event kNone, with joints) until the
+  /// bound on any body's motion between consecutive joint samples, MaxPointTravel, is no more
+  /// than the clearance measured at the earlier one: no contact can slip between samples.
+  /// Null (the default): no collision queries, sampling unchanged.
+  CollisionWorld* collision = nullptr;
+  /// Smallest step bound (m): where the clearance is below it, steps of this much motion are
+  /// taken anyway (so the walk ends); a feature thinner than this could slip between samples
+  /// only where the head is already closer than this to something.
+  double collision_min_clearance_m = 0.0005;
+  /// Cap on the extra samples per line (keeps a pathological line finite).
+  int collision_max_extra_samples = 4000;
 };
 
 ExecuteOptions ExecuteOptionsFor(const scene::Scene& scene);
@@ -41,7 +53,7 @@ struct ExecutionSummary {
   long stitches = 0;  ///< stitch cycles started (needle entries)
   double time_s = 0.0;
   program::ProgramHeader header;
-  bool ok = false;    ///< no input errors (rule findings are the verifier's business)
+  bool ok = false;  ///< no input errors (rule findings are the verifier's business)
 };
 
 /// Runs `in` through the parser, the modal state and the kinematics, sending every line and

@@ -13,7 +13,7 @@ enum class FindingSeverity { kWarning, kError };
 
 /// One rule violation at one place in the programme.
 struct Finding {
-  std::string rule;                                   ///< rule id, e.g. "needle.side_force"
+  std::string rule;  ///< rule id, e.g. "needle.side_force"
   FindingSeverity severity = FindingSeverity::kError;
   int line = 0;         ///< 1-based source line of the programme; 0 = not tied to a line
   long stitch = 0;      ///< 1-based stitch index; 0 = not tied to a stitch
@@ -26,12 +26,12 @@ struct Finding {
 
 /// Everything one rule saw over the whole programme.
 struct RuleSummary {
-  std::string id;           ///< "needle.side_force"
-  std::string description;  ///< one line: what the rule checks
-  std::string unit;         ///< unit of values and limits
-  long checked = 0;         ///< items checked (stitches, samples, lines; see the rule)
-  long errors = 0;          ///< findings of error severity (all, even past the cap)
-  long warnings = 0;        ///< findings of warning severity (all, even past the cap)
+  std::string id;                       ///< "needle.side_force"
+  std::string description;              ///< one line: what the rule checks
+  std::string unit;                     ///< unit of values and limits
+  long checked = 0;                     ///< items checked (stitches, samples, lines; see the rule)
+  long errors = 0;                      ///< findings of error severity (all, even past the cap)
+  long warnings = 0;                    ///< findings of warning severity (all, even past the cap)
   std::optional<double> error_limit;    ///< the error limit in force, if the rule has one
   std::optional<double> warning_limit;  ///< the warning limit in force, if any
   /// The worst value seen (largest, or smallest for lower-bound rules) and where.
@@ -49,14 +49,14 @@ struct Report {
   std::string scene_file;
   std::string scene_name;
   std::string head;
-  std::string verdict;       ///< "pass" (no errors) or "fail"
-  long lines = 0;            ///< programme lines read
-  long moves = 0;            ///< motion lines executed
-  long stitches = 0;         ///< stitch cycles executed
+  std::string verdict;  ///< "pass" (no errors) or "fail"
+  long lines = 0;       ///< programme lines read
+  long moves = 0;       ///< motion lines executed
+  long stitches = 0;    ///< stitch cycles executed
   double stitch_length_mm = 0.0;
-  double cycle_time_s = 0.0;  ///< simulated programme time
-  long errors = 0;            ///< sum over rules
-  long warnings = 0;          ///< sum over rules
+  double cycle_time_s = 0.0;       ///< simulated programme time
+  long errors = 0;                 ///< sum over rules
+  long warnings = 0;               ///< sum over rules
   std::vector<RuleSummary> rules;  ///< in registry order
 };
 
@@ -65,7 +65,8 @@ std::string ReportToText(const Report& report);
 /// JSON, format in docs/report-format.md; keys in a fixed order, numbers in shortest
 /// round-trip form, trailing newline.
 std::string ReportToJson(const Report& report);
-/// JUnit XML: one <testsuite> "stitchsim", one <testcase> per rule, a <failure> listing the
+/// JUnit XML: <testsuites name="stitchsim"> holding one <testsuite> "stitchsim.<scene>", one
+/// <testcase> per rule, a <failure> listing the
 /// lines for rules with errors (warnings go to <system-out>).
 std::string ReportToJunit(const Report& report);
 

@@ -10,6 +10,7 @@
 
 #include "stitchsim/process/stitch_cycle.h"
 #include "stitchsim/scene/scene.h"
+#include "stitchsim/sim/collision.h"
 #include "stitchsim/sim/robot_model.h"
 #include "stitchsim/sim/trace.h"
 #include "stitchsim/verify/report.h"
@@ -19,8 +20,8 @@ namespace stitchsim::verify {
 /// A closed needle window: the needles went in and came out again.
 struct WindowRecord {
   long stitch = 0;
-  int entry_line = 0;   ///< line where the needles entered
-  int exit_line = 0;    ///< line where they left
+  int entry_line = 0;  ///< line where the needles entered
+  int exit_line = 0;   ///< line where they left
   process::WindowMetrics metrics;
   sim::TraceSample exit_sample;  ///< the last sample of the window (for snapshots)
 };
@@ -30,7 +31,7 @@ struct PenetrationRecord {
   long stitch = 0;
   int line = 0;
   Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();  ///< part frame, mm
-  std::vector<std::optional<Eigen::Vector3d>> points;     ///< per needle, on the surface
+  std::vector<std::optional<Eigen::Vector3d>> points;      ///< per needle, on the surface
   geom::SurfaceProjection foot;  ///< the tool point projected on the stitching surface
   sim::TraceSample sample;
 };
@@ -40,6 +41,8 @@ struct RuleContext {
   const scene::Scene* scene = nullptr;
   const sim::RobotModel* robot = nullptr;
   const process::ProcessModel* process = nullptr;
+  /// The scene's collision world; the collision.* rules run only when it is set.
+  sim::CollisionWorld* collision = nullptr;
 };
 
 class Rule {
@@ -61,12 +64,23 @@ class Rule {
   static std::optional<double> LimitOf(const RuleContext& ctx, const std::string& rule,
                                        const std::string& key);
   /// Counts one checked item and records a finding when `value` exceeds a limit
-  /// (upper-bound check). Returns the severity recorded, if any.
+  /// (upper-bound check). `what()` names the measured quantity; it is only called for a
+  /// finding, so the hot path formats nothing. Returns the severity recorded, if any.
+  template <typename WhatFn>
   std::optional<FindingSeverity> CheckUpper(double value, int line, long stitch,
-                                            const std::string& subject,
-                                            const std::string& what,
-                                            const sim::TraceSample* sample);
+                                            const std::string& subject, WhatFn&& what,
+                                            const sim::TraceSample* sample) {
+    const std::optional<FindingSeverity> sev = Classify(value, line, stitch, sample);
+    if (sev) RecordExceeded(*sev, value, line, stitch, subject, what(), sample);
+    return sev;
+  }
   void Counted() { ++summary_.checked; }
+  /// The counting / worst-tracking half of CheckUpper: the severity `value` deserves.
+  std::optional<FindingSeverity> Classify(double value, int line, long stitch,
+                                          const sim::TraceSample* sample);
+  void RecordExceeded(FindingSeverity severity, double value, int line, long stitch,
+                      const std::string& subject, const std::string& what,
+                      const sim::TraceSample* sample);
   /// Records a finding directly (for yes/no rules).
   void Record(FindingSeverity severity, double value, double limit, int line, long stitch,
               const std::string& subject, std::string message, const sim::TraceSample* sample);

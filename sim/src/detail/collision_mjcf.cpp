@@ -1,0 +1,127 @@
+#include "detail/collision_mjcf.h"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <cstring>
+#include <memory>
+
+#include "stitchsim/common/files.h"
+
+namespace stitchsim::sim::detail {
+namespace {
+
+struct ModelDeleter {
+  void operator()(mjModel* m) const { mj_deleteModel(m); }
+};
+
+// Worldbody contents of a stand-alone MJCF fragment (a head file).
+std::string WorldbodyInner(const std::string& xml) {
+  const auto b = xml.find("<worldbody>");
+  const auto e = xml.rfind("</worldbody>");
+  if (b == std::string::npos || e == std::string::npos || e < b) return {};
+  return xml.substr(b + std::strlen("<worldbody>"), e - b - std::strlen("<worldbody>"));
+}
+
+Eigen::Isometry3d PoseOf(const mjtNum* pos, const mjtNum* quat) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.translation() = Eigen::Vector3d(pos[0], pos[1], pos[2]);
+  t.linear() = Eigen::Quaterniond(quat[0], quat[1], quat[2], quat[3]).normalized().matrix();
+  return t;
+}
+
+}  // namespace
+
+std::vector<MjcfGeom> LoadMjcfGeoms(const std::filesystem::path& cell_mjcf,
+                                    const std::filesystem::path& head_mjcf,
+                                    const std::vector<std::string>& link_names,
+                                    DiagnosticSink& sink, bool& ok) {
+  ok = false;
+  std::vector<MjcfGeom> out;
+  const auto cell = ReadFile(cell_mjcf);
+  const auto head = ReadFile(head_mjcf);
+  if (!cell || !head) {
+    sink.Error("collision-mjcf", {(!cell ? cell_mjcf : head_mjcf).string(), 0, 0},
+               "cannot read MJCF file");
+    return out;
+  }
+  const std::string inner = WorldbodyInner(*head);
+  std::string text = *cell;
+  const std::string marker = "<!--STITCHSIM:HEAD-->";
+  const auto at = text.find(marker);
+  if (inner.empty() || at == std::string::npos) {
+    sink.Error("collision-mjcf", {head_mjcf.string(), 0, 0},
+               "head MJCF has no <worldbody> content or the cell lacks the head marker");
+    return out;
+  }
+  // Tag the head's bodies so its geoms can be told apart after compilation.
+  text.replace(at, marker.size(), "<body name=\"stitchsim_head_root\">" + inner + "</body>");
+  auto vfs = std::make_unique<mjVFS>();  // megabytes: keep it off the stack
+  mj_defaultVFS(vfs.get());
+  const char* name = "stitchsim_collision.xml";
+  if (mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(text.size())) != 0) {
+    sink.Error("collision-mjcf", {cell_mjcf.string(), 0, 0}, "MuJoCo VFS is full");
+    return out;
+  }
+  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), name)], text.data(), text.size());
+  char error[1024] = {0};
+  std::unique_ptr<mjModel, ModelDeleter> m(mj_loadXML(name, vfs.get(), error, sizeof(error)));
+  mj_deleteVFS(vfs.get());
+  if (!m) {
+    sink.Error("collision-mjcf", {cell_mjcf.string(), 0, 0},
+               std::string("MuJoCo could not compile the cell + head model: ") + error);
+    return out;
+  }
+  auto body_name = [&](int b) {
+    const char* n = mj_id2name(m.get(), mjOBJ_BODY, b);
+    return std::string(n != nullptr ? n : "");
+  };
+  auto is_link = [&](const std::string& n) {
+    return std::find(link_names.begin(), link_names.end(), n) != link_names.end();
+  };
+  bool good = true;
+  for (int g = 0; g < m->ngeom; ++g) {
+    MjcfGeom geom;
+    const char* gname = mj_id2name(m.get(), mjOBJ_GEOM, g);
+    geom.name = gname != nullptr ? gname : "geom_" + std::to_string(g);
+    const int body = m->geom_bodyid[g];
+    geom.body = body_name(body);
+    Eigen::Isometry3d pose = PoseOf(m->geom_pos + 3 * g, m->geom_quat + 4 * g);
+    int b = body;
+    while (b != 0 && !is_link(body_name(b))) {
+      if (body_name(b) == "stitchsim_head_root") geom.in_head = true;
+      pose = PoseOf(m->body_pos + 3 * b, m->body_quat + 4 * b) * pose;
+      b = m->body_parentid[b];
+    }
+    geom.link = b == 0 ? "world" : body_name(b);
+    geom.pose_in_link = pose;
+    geom.size = Eigen::Vector3d(m->geom_size[3 * g], m->geom_size[3 * g + 1],
+                                m->geom_size[3 * g + 2]);
+    switch (m->geom_type[g]) {
+      case mjGEOM_BOX: geom.shape = MjcfShape::kBox; break;
+      case mjGEOM_SPHERE: geom.shape = MjcfShape::kSphere; break;
+      case mjGEOM_CAPSULE: geom.shape = MjcfShape::kCapsule; break;
+      case mjGEOM_CYLINDER: geom.shape = MjcfShape::kCylinder; break;
+      case mjGEOM_PLANE: geom.shape = MjcfShape::kPlane; break;
+      default:
+        sink.Error("collision-unsupported-geom", {head_mjcf.string(), 0, 0},
+                   "geom '" + geom.name + "' has a MuJoCo type (" +
+                       std::to_string(m->geom_type[g]) +
+                       ") the collision checker does not map to FCL");
+        good = false;
+        continue;
+    }
+    if (geom.shape == MjcfShape::kPlane && b != 0) {
+      sink.Error("collision-unsupported-geom", {head_mjcf.string(), 0, 0},
+                 "geom '" + geom.name + "' is a plane on a body that is not the world");
+      good = false;
+      continue;
+    }
+    out.push_back(std::move(geom));
+  }
+  ok = good;
+  if (!good) out.clear();
+  return out;
+}
+
+}  // namespace stitchsim::sim::detail

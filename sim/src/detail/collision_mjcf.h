@@ -1,0 +1,36 @@
+#pragma once
+// Reads the robot, cell and head collision primitives from the MJCF files: the cell model with
+// the head fragment inserted at its marker, compiled by MuJoCo (compiled geom frames are exact:
+// fromto, euler and the like are resolved by the compiler).
+
+#include <Eigen/Geometry>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "stitchsim/common/diagnostics.h"
+
+namespace stitchsim::sim::detail {
+
+enum class MjcfShape { kBox, kSphere, kCapsule, kCylinder, kPlane };
+
+/// One geom of the compiled model, posed in the frame of the nearest body that is a URDF link.
+struct MjcfGeom {
+  std::string name;        ///< geom name ("geom_<id>" when unnamed)
+  std::string body;        ///< MuJoCo body that carries it
+  std::string link;        ///< URDF link whose frame `pose_in_link` is in ("world" for body 0)
+  bool in_head = false;    ///< the geom comes from the head fragment
+  MjcfShape shape = MjcfShape::kBox;
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< MuJoCo geom_size (half extents, m)
+  Eigen::Isometry3d pose_in_link = Eigen::Isometry3d::Identity();
+};
+
+/// Compiles `cell_mjcf` with `head_mjcf` inserted at <!--STITCHSIM:HEAD--> and returns every
+/// geom; `link_names` are the URDF links (bodies of those names share their frames). Codes
+/// collision-mjcf, collision-unsupported-geom) and an empty vector on failure.
+std::vector<MjcfGeom> LoadMjcfGeoms(const std::filesystem::path& cell_mjcf,
+                                    const std::filesystem::path& head_mjcf,
+                                    const std::vector<std::string>& link_names,
+                                    DiagnosticSink& sink, bool& ok);
+
+}  // namespace stitchsim::sim::detail

@@ -1,0 +1,137 @@
+// `stitchsim verify` as CI uses it: exit codes, JSON and JUnit that standard tools read,
+// byte-identical reports, reports written whole or not at all, predictable snapshots.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kSource = STITCHSIM_SOURCE_DIR;
+const fs::path kBinary = fs::path(STITCHSIM_BINARY_DIR) / "app" / "stitchsim";
+
+int RunCli(const std::string& args, const fs::path& stdout_file = "/dev/null") {
+  const std::string cmd = kBinary.string() + " " + args + " >" + stdout_file.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+int Python(const std::string& code, const fs::path& file) {
+  const fs::path script = file.string() + ".check.py";
+  std::ofstream(script) << code;
+  const std::string cmd = "python3 " + script.string() + " " + file.string();
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string Slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+class VerifyCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    // ctest runs each case as its own process, in parallel: one folder per case.
+    dir_ = fs::temp_directory_path() /
+           ("stitchsim_verify_cli_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    scene_ = (kSource / "scenes/circle_8in.yaml").string();
+    ASSERT_EQ(RunCli("plan stitch --scene " + scene_ + " --mode coupled -o " +
+                     (dir_ / "coupled.nc").string()),
+              0);
+    ASSERT_EQ(RunCli("plan stitch --scene " + scene_ + " --mode decoupled -o " +
+                     (dir_ / "decoupled.nc").string()),
+              0);
+  }
+  fs::path dir_;
+  std::string scene_;
+};
+
+TEST_F(VerifyCli, ExitCodesPassFailAndBadInput) {
+  EXPECT_EQ(RunCli("verify " + (dir_ / "decoupled.nc").string() + " --scene " + scene_), 0);
+  EXPECT_EQ(RunCli("verify " + (dir_ / "coupled.nc").string() + " --scene " + scene_), 1);
+  EXPECT_EQ(RunCli("verify " + (dir_ / "missing.nc").string() + " --scene " + scene_), 2);
+  std::ofstream(dir_ / "nan.nc") << "%\nG21 G90\nG0 X0 Y0 Z0 A0 B0 C0 U0 V0\nG1 Xnan U5 V5 F1\n%\n";
+  EXPECT_EQ(RunCli("verify " + (dir_ / "nan.nc").string() + " --scene " + scene_), 2);
+  std::ofstream(dir_ / "empty.nc") << "%\nG21 G90\nT1 M6\nM30\n%\n";
+  EXPECT_EQ(RunCli("verify " + (dir_ / "empty.nc").string() + " --scene " + scene_), 1);
+}
+
+TEST_F(VerifyCli, ReportsParseWithStandardToolsAndAreByteIdentical) {
+  const fs::path json1 = dir_ / "r1.json", json2 = dir_ / "r2.json";
+  const fs::path xml1 = dir_ / "j1.xml", xml2 = dir_ / "j2.xml";
+  const fs::path out1 = dir_ / "o1.txt", out2 = dir_ / "o2.txt";
+  const std::string prog = (dir_ / "coupled.nc").string();
+  ASSERT_EQ(RunCli("verify " + prog + " --scene " + scene_ + " --report " + json1.string() +
+                       " --junit " + xml1.string(),
+                   out1),
+            1);
+  ASSERT_EQ(RunCli("verify " + prog + " --scene " + scene_ + " --report " + json2.string() +
+                       " --junit " + xml2.string(),
+                   out2),
+            1);
+  EXPECT_EQ(Slurp(json1), Slurp(json2));
+  EXPECT_EQ(Slurp(xml1), Slurp(xml2));
+  EXPECT_EQ(Slurp(out1), Slurp(out2));
+  EXPECT_EQ(Python(R"(import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["verdict"] == "fail", r["verdict"]
+rules = {x["id"]: x for x in r["rules"]}
+assert rules["needle.side_force"]["errors"] > 0
+assert rules["needle.rotation_in_preform"]["errors"] > 0
+f = rules["needle.side_force"]["findings"][0]
+for k in ("rule", "severity", "line", "stitch", "value", "limit", "unit", "message"):
+    assert k in f, k
+assert f["line"] > 0 and f["unit"] == "mm"
+assert r["counts"]["stitches"] == 255
+)",
+                   json1),
+            0);
+  EXPECT_EQ(Python(R"(import sys, xml.etree.ElementTree as E
+root = E.parse(sys.argv[1]).getroot()
+assert root.tag == "testsuites"
+suites = root.findall("testsuite")
+assert len(suites) == 1
+cases = suites[0].findall("testcase")
+names = [c.get("name") for c in cases]
+assert "needle.side_force" in names and "kin.reach" in names
+failed = [c.get("name") for c in cases if c.find("failure") is not None]
+assert "needle.side_force" in failed and "needle.rotation_in_preform" in failed
+assert "kin.reach" not in failed
+assert int(suites[0].get("failures")) == len(failed)
+assert "line " in cases[names.index("needle.side_force")].find("failure").text
+)",
+                   xml1),
+            0);
+}
+
+TEST_F(VerifyCli, BadInputWritesNoReport) {
+  const fs::path json = dir_ / "bad.json";
+  std::ofstream(dir_ / "bad.nc") << "%\nG21 G90\nG0 X0 Y0 Z0 A0 B0 C0 U0 V0\nG1 Q5\n%\n";
+  EXPECT_EQ(RunCli("verify " + (dir_ / "bad.nc").string() + " --scene " + scene_ +
+                   " --report " + json.string()),
+            2);
+  EXPECT_FALSE(fs::exists(json));
+}
+
+TEST_F(VerifyCli, SnapshotsHavePredictableNames) {
+  const fs::path snaps = dir_ / "snaps";
+  ASSERT_EQ(RunCli("verify " + (dir_ / "coupled.nc").string() + " --scene " + scene_ +
+                   " --snapshots " + snaps.string()),
+            1);
+  EXPECT_TRUE(fs::exists(snaps / "overview.png"));
+  EXPECT_TRUE(fs::exists(snaps / "needle.side_force.png"));
+  EXPECT_TRUE(fs::exists(snaps / "needle.rotation_in_preform.png"));
+  EXPECT_FALSE(fs::exists(snaps / "kin.reach.png"));  // only failing rules get a close-up
+  EXPECT_GT(fs::file_size(snaps / "overview.png"), 10000u);
+}
+
+}  // namespace
