@@ -168,9 +168,7 @@ void BM_PlanAndWrite(benchmark::State& state) {
   state.counters["decoupled"] = static_cast<double>(decoupled / state.iterations());
   state.SetBytesProcessed(static_cast<std::int64_t>(bytes));
 }
-BENCHMARK(BM_PlanAndWrite)
-    ->ArgsProduct({{0, 1}, {0, 1, 2}})
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanAndWrite)->ArgsProduct({{0, 1}, {0, 1, 2}})->Unit(benchmark::kMillisecond);
 
 void BM_PlanOnly(benchmark::State& state) {
   const int which = static_cast<int>(state.range(0));
@@ -189,9 +187,7 @@ void BM_PlanOnly(benchmark::State& state) {
   state.counters["stitches/s"] =
       benchmark::Counter(static_cast<double>(stitches), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_PlanOnly)
-    ->ArgsProduct({{0, 1}, {0, 1, 2}})
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanOnly)->ArgsProduct({{0, 1}, {0, 1, 2}})->Unit(benchmark::kMillisecond);
 
 // Creating the planner alone: the arc-length table and the first two path points.
 void BM_CreatePlanner(benchmark::State& state) {

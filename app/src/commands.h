@@ -36,7 +36,7 @@ struct RenderRequest {
   int width = 1280;
   int height = 960;
   std::string view = "overview";  ///< overview | head | part (the stitches, from above)
-  std::string coverage_json;  ///< if set, write per-class pixel counts here
+  std::string coverage_json;      ///< if set, write per-class pixel counts here
   sim::JointVector joints = sim::JointVector::Zero();
   Eigen::Isometry3d tool_world_m = Eigen::Isometry3d::Identity();
   /// Points to draw instead of the scene's paths (stitches), part frame, mm.

@@ -36,6 +36,12 @@ int RunPlanStitch(const PlanStitchArgs& a) {
   DiagnosticSink sink;
   auto scene = scene::LoadScene(a.scene, sink);
   if (PrintDiagnostics(sink) || !scene) return kExitBadInput;
+  if (!scene->head.IsStitching()) {
+    PrintError("plan-wrong-head",
+               a.scene + ": head '" + scene->head.name +
+                   "' does not stitch; use `stitchsim plan afp` for fiber placement");
+    return kExitBadInput;
+  }
   const scene::PathSpec* path = a.path.empty() ? &scene->paths.front() : scene->FindPath(a.path);
   if (path == nullptr) {
     std::string names;

@@ -187,7 +187,8 @@ int RunRenderScene(const LoadedScene& ls, const RenderRequest& req) {
     interest.push_back(req.tool_world_m.translation());
     interest.push_back(req.tool_world_m.translation() + Eigen::Vector3d(0, 0, 0.6));
   } else if (part_view) {
-    for (const auto& o : overlays) interest.insert(interest.end(), o.points_m.begin(), o.points_m.end());
+    for (const auto& o : overlays)
+      interest.insert(interest.end(), o.points_m.begin(), o.points_m.end());
     interest.push_back(req.tool_world_m.translation());
   } else {
     for (const auto& o : overlays)
@@ -212,7 +213,8 @@ int RunRenderScene(const LoadedScene& ls, const RenderRequest& req) {
       hi = hi.cwiseMax(p);
     }
     view.lookat_m = 0.5 * (lo + hi);
-    view.distance_m = std::max(0.5, 1.6 * 0.5 * (hi - lo).norm() / std::tan(20.0 * 3.14159265358979 / 180.0));
+    view.distance_m =
+        std::max(0.5, 1.6 * 0.5 * (hi - lo).norm() / std::tan(20.0 * 3.14159265358979 / 180.0));
     // From the far side of the part (the robot works from the rail side, -y).
     view.azimuth_deg = -60.0;
     view.elevation_deg = -55.0;

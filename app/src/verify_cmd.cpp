@@ -156,9 +156,8 @@ int RunVerify(const VerifyArgs& a) {
   verify::Verifier verifier(ctx, !a.snapshots.empty());
   ProgressSink progress(verifier, ::isatty(2) != 0);
   BoundedDiagnosticSink diagnostics(100);
-  const sim::ExecutionSummary run =
-      sim::ExecuteProgram(cell, model, dialect, in, a.program, execute_options, diagnostics,
-                          progress);
+  const sim::ExecutionSummary run = sim::ExecuteProgram(cell, model, dialect, in, a.program,
+                                                        execute_options, diagnostics, progress);
   progress.Done();
   if (PrintDiagnostics(diagnostics) || !run.ok) return kExitBadInput;
 

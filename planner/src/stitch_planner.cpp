@@ -122,8 +122,8 @@ bool StitchPathPlanner::Next(PlannedStitch& out) {
   Eigen::Isometry3d end_frame;
   if (i < count_) {
     // Sequential: searched from this stitch's end point, one stitch back.
-    after = path_.AtArcLengthFrom(following_,
-                                  std::min((i + 1) * stitch_length_mm_, path_.Length()));
+    after =
+        path_.AtArcLengthFrom(following_, std::min((i + 1) * stitch_length_mm_, path_.Length()));
     end_frame = FrameAt(following_, after);
     if (!end_frame.matrix().allFinite()) end_frame = EndFrame();
   } else {

@@ -227,8 +227,7 @@ WindowMetrics EvaluateCoupledStitch(const ProcessModel& model, const Eigen::Isom
       sin_prev = sn[j];
       vers_prev = vs[j];
       const double s = s_in + span * static_cast<double>(block + j) / samples;
-      const Eigen::Vector3d travel =
-          ((1.0 - s) * from.translation() + s * to.translation()) - t_in;
+      const Eigen::Vector3d travel = ((1.0 - s) * from.translation() + s * to.translation()) - t_in;
       hx[j] = travel.x();
       hy[j] = travel.y();
       hz[j] = travel.z();
@@ -269,7 +268,8 @@ WindowMetrics EvaluateCoupledStitch(const ProcessModel& model, const Eigen::Isom
       for (int j = 0; j < count; ++j) nd.max_sq = std::max(nd.max_sq, std::max(q0[j], q1[j]));
     }
   }
-  for (std::size_t n = 0; n < needles.size(); ++n) m.side_force_mm[n] = std::sqrt(needles[n].max_sq);
+  for (std::size_t n = 0; n < needles.size(); ++n)
+    m.side_force_mm[n] = std::sqrt(needles[n].max_sq);
   return m;
 }
 

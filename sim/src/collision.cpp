@@ -28,8 +28,8 @@ struct Body {
   std::string name;  // reported name: link, "head:<geom>", "mold", "constraint:<name>", ...
   Group group = Group::kCell;
   PartKind part = PartKind::kNone;
-  int link = 0;         // URDF link the geometry is fixed to (ignored for the part)
-  int rigid = 0;        // link index of the rigid group (links joined by fixed joints)
+  int link = 0;                // URDF link the geometry is fixed to (ignored for the part)
+  int rigid = 0;               // link index of the rigid group (links joined by fixed joints)
   bool allow_preform = false;  // process contact with the preform is expected
   bool allow_mold = false;     // process contact with the mold is expected
   bool moves = false;          // pose depends on q
@@ -123,11 +123,16 @@ std::string ProbePair(const Geometry& a, const Geometry& b) {
 Geometry ProbeShape(const fcl::CollisionGeometryd& g) {
   if (g.getObjectType() == fcl::OT_BVH) return MakeMesh(BoxMesh(0.1));
   switch (g.getNodeType()) {
-    case fcl::GEOM_BOX: return std::make_shared<fcl::Boxd>(0.2, 0.2, 0.2);
-    case fcl::GEOM_SPHERE: return std::make_shared<fcl::Sphered>(0.1);
-    case fcl::GEOM_CAPSULE: return std::make_shared<fcl::Capsuled>(0.1, 0.2);
-    case fcl::GEOM_CYLINDER: return std::make_shared<fcl::Cylinderd>(0.1, 0.2);
-    default: return nullptr;
+    case fcl::GEOM_BOX:
+      return std::make_shared<fcl::Boxd>(0.2, 0.2, 0.2);
+    case fcl::GEOM_SPHERE:
+      return std::make_shared<fcl::Sphered>(0.1);
+    case fcl::GEOM_CAPSULE:
+      return std::make_shared<fcl::Capsuled>(0.1, 0.2);
+    case fcl::GEOM_CYLINDER:
+      return std::make_shared<fcl::Cylinderd>(0.1, 0.2);
+    default:
+      return nullptr;
   }
 }
 
@@ -200,8 +205,7 @@ bool FclWorld::Build(const scene::Scene& scene, DiagnosticSink& sink) {
   std::vector<std::string> link_names;
   for (const auto& l : robot_.links()) link_names.push_back(l.name);
   bool ok = false;
-  const auto geoms =
-      detail::LoadMjcfGeoms(scene.cell_mjcf, scene.head.mjcf, link_names, sink, ok);
+  const auto geoms = detail::LoadMjcfGeoms(scene.cell_mjcf, scene.head.mjcf, link_names, sink, ok);
   if (!ok) return false;
   const bool rs535 = scene.head.kind == scene::HeadKind::kSingleSidedStitch;
   const bool rs566 = scene.head.kind == scene::HeadKind::kDoubleSidedStitch;
@@ -399,7 +403,9 @@ bool FclWorld::Build(const scene::Scene& scene, DiagnosticSink& sink) {
       const Eigen::Vector3d corner((c & 1) ? box.max_.x() : box.min_.x(),
                                    (c & 2) ? box.max_.y() : box.min_.y(),
                                    (c & 4) ? box.max_.z() : box.min_.z());
-      const Eigen::Vector3d p = (b.part != PartKind::kNone ? cell_.mount_to_part_m : Eigen::Isometry3d::Identity()) * (b.local * corner);
+      const Eigen::Vector3d p =
+          (b.part != PartKind::kNone ? cell_.mount_to_part_m : Eigen::Isometry3d::Identity()) *
+          (b.local * corner);
       rotator_reach_m_ = std::max(rotator_reach_m_, p.head<2>().norm());
     }
   }
@@ -417,8 +423,7 @@ void FclWorld::Place(const JointVector& q) {
   }
 }
 
-bool FclWorld::CollideCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2,
-                               void* data) {
+bool FclWorld::CollideCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data) {
   auto* d = static_cast<CollideData*>(data);
   const int i = d->world->IndexOf(o1), j = d->world->IndexOf(o2);
   if (d->world->Checked(i, j)) d->world->CheckPair(i, j, *d->result);
@@ -435,7 +440,7 @@ void FclWorld::CheckPair(int i, int j, CollisionResult& result) const {
   const fcl::Contactd& c = res.getContact(0);
   Contact out;
   out.kind = a.group == Group::kPart || b.group == Group::kPart ? ContactClass::kHeadPart
-                                                                 : ContactClass::kRobotCell;
+                                                                : ContactClass::kRobotCell;
   const bool swap = b.group == Group::kRobot && a.group != Group::kRobot;
   out.body_a = swap ? b.name : a.name;
   out.body_b = swap ? a.name : b.name;
@@ -444,8 +449,8 @@ void FclWorld::CheckPair(int i, int j, CollisionResult& result) const {
   result.contacts.push_back(std::move(out));
 }
 
-bool FclWorld::DistanceCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2,
-                                void* data, double& dist) {
+bool FclWorld::DistanceCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data,
+                                double& dist) {
   auto* d = static_cast<DistanceData*>(data);
   const int i = d->world->IndexOf(o1), j = d->world->IndexOf(o2);
   if (d->world->Checked(i, j)) {
@@ -487,8 +492,8 @@ CollisionResult FclWorld::Check(const JointVector& q, const CollisionOptions& op
   if (options.compute_clearance) {
     if (!result.contacts.empty()) {
       result.min_clearance_m = 0.0;
-      result.min_clearance_pair = result.contacts.front().body_a + "|" +
-                                  result.contacts.front().body_b;
+      result.min_clearance_pair =
+          result.contacts.front().body_a + "|" + result.contacts.front().body_b;
     } else {
       DistanceData dd{this, &result, options.clearance_cutoff_m};
       robot_manager_.distance(&env_manager_, &dd, &FclWorld::DistanceCallback);

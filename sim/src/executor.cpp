@@ -194,11 +194,12 @@ class Executor {
                          previous);
   }
 
-  // Clearance at q (0 in contact), from the collision world.
+  // Clearance at q from the collision world; -1 in contact (or when the query failed: the
+  // rules report both at this sample).
   double ClearanceAt(const JointVector& q) {
     CollisionOptions o;
     const CollisionResult r = options_.collision->Check(q, o);
-    return r.contacts.empty() && r.error.empty() ? r.min_clearance_m : 0.0;
+    return r.contacts.empty() && r.error.empty() ? r.min_clearance_m : -1.0;
   }
 
   // The between-samples guarantee (see ExecuteOptions::collision): walks the IK samples of the
@@ -209,7 +210,7 @@ class Executor {
     JointVector prev = joints_;
     bool have_prev = have_joints_ && have_pose_;
     double prev_s = 0.0;
-    double clearance = have_prev ? ClearanceAt(prev) : 0.0;
+    double clearance = have_prev ? ClearanceAt(prev) : -1.0;
     std::vector<double> extra;
     for (std::size_t i = 0; i < samples.size(); ++i) {
       const bool first = i == 0, last = i + 1 == samples.size();
@@ -220,9 +221,9 @@ class Executor {
       const auto usable = [](const ToolPoseSolution& x) {
         return x.ik.status != IkStatus::kUnreachable && x.ik.status != IkStatus::kJointLimit;
       };
-      // In contact (clearance 0) the sample itself reports it: no need to creep on. Near
-      // contact the step never falls below the minimum, so the walk ends.
-      while (have_prev && usable(sol) && clearance > 0.0 &&
+      // In contact the sample itself reports it: no need to creep on. Near contact (even
+      // touching) the step never falls below the minimum, so the walk ends.
+      while (have_prev && usable(sol) && clearance >= 0.0 &&
              static_cast<int>(extra.size()) < options_.collision_max_extra_samples) {
         const double allowed = std::max(clearance, options_.collision_min_clearance_m);
         const double travel = options_.collision->MaxPointTravel(prev, sol.ik.joints);

@@ -1,6 +1,8 @@
 // Collision world and rules: clean poses clear, interferences caught with their line, the
 // between-samples guarantee, bundled scenes free of false positives, unsupported geometry an
 // error. Uses the real FCL and MuJoCo (no mocks).
+#include "stitchsim/sim/collision.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -14,7 +16,6 @@
 #include "stitchsim/program/dialect.h"
 #include "stitchsim/scene/scene.h"
 #include "stitchsim/sim/cell.h"
-#include "stitchsim/sim/collision.h"
 #include "stitchsim/sim/executor.h"
 #include "stitchsim/verify/verifier.h"
 
@@ -109,7 +110,8 @@ TEST(CollisionTest, CleanPosesAreClear) {
     ASSERT_TRUE(sol.ik.ok());
     const CollisionResult r = l.world->Check(sol.ik.joints, {});
     EXPECT_TRUE(r.error.empty()) << r.error;
-    EXPECT_TRUE(r.contacts.empty()) << r.contacts.front().body_a << "|" << r.contacts.front().body_b;
+    EXPECT_TRUE(r.contacts.empty())
+        << r.contacts.front().body_a << "|" << r.contacts.front().body_b;
     // The presser foot rides 0.2 mm over the preform (allowed); the nearest forbidden pair is
     // the needle housing over the preform top, about 18 mm.
     EXPECT_GT(r.min_clearance_m, 0.010) << r.min_clearance_pair;
@@ -181,8 +183,7 @@ TEST(CollisionTest, RailAndCarriageHitCaught) {
   EXPECT_TRUE(carriage);
   EXPECT_EQ(r.min_clearance_m, 0.0);
   // The scene's own row: the head hanging to the low coupon hits the turntable edge.
-  const verify::Report report =
-      Verify(l, PlanDecoupled(*l.scene, l.scene->paths.front()), true);
+  const verify::Report report = Verify(l, PlanDecoupled(*l.scene, l.scene->paths.front()), true);
   const verify::RuleSummary* cell = RuleOf(report, "collision.robot_cell");
   ASSERT_NE(cell, nullptr);
   EXPECT_GT(cell->errors, 0);
@@ -197,10 +198,7 @@ TEST(CollisionTest, BundledCleanScenesHaveNoFalsePositives) {
       {"rail_hit", "by design"},
       {"rs566_stringer_seam", "by design"},
       {"concave_cylinder_small", "AFP, by design"},
-      {"afp_concave_cylinder", "AFP course"},
-      // Real interference of the models as given: the 64 mm presser foot passes the
-      // stringer faces (3.6 in from the line centre) at both ends of the 5.4 in line.
-      {"cylinder_r90_frame", "known: presser foot vs stringers at the line ends"}};
+      {"afp_concave_cylinder", "AFP course"}};
   int checked = 0;
   for (const auto& entry : std::filesystem::directory_iterator(SourceDir() / "scenes")) {
     if (entry.path().extension() != ".yaml") continue;
@@ -213,20 +211,17 @@ TEST(CollisionTest, BundledCleanScenesHaveNoFalsePositives) {
       const auto* head = RuleOf(report, "collision.head_mold");
       const auto* cell = RuleOf(report, "collision.robot_cell");
       ASSERT_TRUE(head && cell);
-      if (name == "cylinder_r90_frame") {
-        for (const auto& f : head->findings) {
-          EXPECT_NE(f.subject.find("constraint:stringer"), std::string::npos) << f.message;
-        }
-        EXPECT_EQ(cell->errors, 0) << name;
-        continue;
-      }
       if (interfering.count(name) != 0) continue;
       ++checked;
       EXPECT_EQ(head->errors, 0) << name << " " << path.name << ": "
                                  << (head->findings.empty() ? "" : head->findings[0].message);
       EXPECT_EQ(cell->errors, 0) << name << " " << path.name << ": "
                                  << (cell->findings.empty() ? "" : cell->findings[0].message);
-      EXPECT_EQ(RuleOf(report, "collision.clearance")->warnings, 0) << name << " " << path.name;
+      // The frame-flange line ends 2 mm from the stringer faces: a clearance warning is
+      // the right call there; everywhere else there must be none.
+      if (name != "cylinder_r90_frame") {
+        EXPECT_EQ(RuleOf(report, "collision.clearance")->warnings, 0) << name << " " << path.name;
+      }
     }
   }
   EXPECT_GE(checked, 5);

@@ -116,8 +116,8 @@ assert "line " in cases[names.index("needle.side_force")].find("failure").text
 TEST_F(VerifyCli, BadInputWritesNoReport) {
   const fs::path json = dir_ / "bad.json";
   std::ofstream(dir_ / "bad.nc") << "%\nG21 G90\nG0 X0 Y0 Z0 A0 B0 C0 U0 V0\nG1 Q5\n%\n";
-  EXPECT_EQ(RunCli("verify " + (dir_ / "bad.nc").string() + " --scene " + scene_ +
-                   " --report " + json.string()),
+  EXPECT_EQ(RunCli("verify " + (dir_ / "bad.nc").string() + " --scene " + scene_ + " --report " +
+                   json.string()),
             2);
   EXPECT_FALSE(fs::exists(json));
 }

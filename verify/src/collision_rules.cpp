@@ -95,8 +95,7 @@ class ClearanceRule final : public Rule {
       line_ = s.source_line;
       Record(FindingSeverity::kWarning, mm, *summary_.warning_limit, s.source_line, s.stitch,
              r.min_clearance_pair,
-             r.min_clearance_pair + " only " + std::to_string(mm).substr(0, 5) + " mm apart",
-             &s);
+             r.min_clearance_pair + " only " + std::to_string(mm).substr(0, 5) + " mm apart", &s);
     } else if (!summary_.findings.empty() && summary_.findings.back().line == line_) {
       auto& f = summary_.findings.back();
       f.value = mm;

@@ -95,14 +95,24 @@ std::vector<MjcfGeom> LoadMjcfGeoms(const std::filesystem::path& cell_mjcf,
     }
     geom.link = b == 0 ? "world" : body_name(b);
     geom.pose_in_link = pose;
-    geom.size = Eigen::Vector3d(m->geom_size[3 * g], m->geom_size[3 * g + 1],
-                                m->geom_size[3 * g + 2]);
+    geom.size =
+        Eigen::Vector3d(m->geom_size[3 * g], m->geom_size[3 * g + 1], m->geom_size[3 * g + 2]);
     switch (m->geom_type[g]) {
-      case mjGEOM_BOX: geom.shape = MjcfShape::kBox; break;
-      case mjGEOM_SPHERE: geom.shape = MjcfShape::kSphere; break;
-      case mjGEOM_CAPSULE: geom.shape = MjcfShape::kCapsule; break;
-      case mjGEOM_CYLINDER: geom.shape = MjcfShape::kCylinder; break;
-      case mjGEOM_PLANE: geom.shape = MjcfShape::kPlane; break;
+      case mjGEOM_BOX:
+        geom.shape = MjcfShape::kBox;
+        break;
+      case mjGEOM_SPHERE:
+        geom.shape = MjcfShape::kSphere;
+        break;
+      case mjGEOM_CAPSULE:
+        geom.shape = MjcfShape::kCapsule;
+        break;
+      case mjGEOM_CYLINDER:
+        geom.shape = MjcfShape::kCylinder;
+        break;
+      case mjGEOM_PLANE:
+        geom.shape = MjcfShape::kPlane;
+        break;
       default:
         sink.Error("collision-unsupported-geom", {head_mjcf.string(), 0, 0},
                    "geom '" + geom.name + "' has a MuJoCo type (" +

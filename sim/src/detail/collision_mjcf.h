@@ -16,10 +16,10 @@ enum class MjcfShape { kBox, kSphere, kCapsule, kCylinder, kPlane };
 
 /// One geom of the compiled model, posed in the frame of the nearest body that is a URDF link.
 struct MjcfGeom {
-  std::string name;        ///< geom name ("geom_<id>" when unnamed)
-  std::string body;        ///< MuJoCo body that carries it
-  std::string link;        ///< URDF link whose frame `pose_in_link` is in ("world" for body 0)
-  bool in_head = false;    ///< the geom comes from the head fragment
+  std::string name;      ///< geom name ("geom_<id>" when unnamed)
+  std::string body;      ///< MuJoCo body that carries it
+  std::string link;      ///< URDF link whose frame `pose_in_link` is in ("world" for body 0)
+  bool in_head = false;  ///< the geom comes from the head fragment
   MjcfShape shape = MjcfShape::kBox;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< MuJoCo geom_size (half extents, m)
   Eigen::Isometry3d pose_in_link = Eigen::Isometry3d::Identity();

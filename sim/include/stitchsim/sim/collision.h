@@ -26,22 +26,22 @@ struct Contact {
   ContactClass kind = ContactClass::kHeadPart;
   std::string body_a;  ///< e.g. "head:presser_foot", "link_3", "constraint:stringer_left"
   std::string body_b;
-  double depth_m = 0.0;                               ///< penetration depth (> 0)
+  double depth_m = 0.0;  ///< penetration depth (> 0)
   Eigen::Vector3d point_world_m = Eigen::Vector3d::Zero();
 };
 
 struct CollisionResult {
-  std::vector<Contact> contacts;          ///< empty = clear
+  std::vector<Contact> contacts;  ///< empty = clear
   /// Smallest distance between checked pairs (>= 0; 0 with contacts). Capped at
   /// CollisionOptions::clearance_cutoff_m (nothing closer than the cutoff), or 1e9 when
   /// clearance was not computed.
   double min_clearance_m = 1e9;
-  std::string min_clearance_pair;         ///< "a|b" of that distance
-  std::string error;                      ///< non-empty: a pair could not be checked
+  std::string min_clearance_pair;  ///< "a|b" of that distance
+  std::string error;               ///< non-empty: a pair could not be checked
 };
 
 struct CollisionOptions {
-  bool compute_clearance = true;  ///< distance queries (needed for collision.clearance)
+  bool compute_clearance = true;     ///< distance queries (needed for collision.clearance)
   double clearance_cutoff_m = 0.05;  ///< distances above this are not refined
   /// Benchmark baseline only: every checked pair, no broadphase, objects rebuilt per query.
   bool naive_baseline = false;
@@ -52,8 +52,8 @@ class CollisionWorld {
  public:
   virtual ~CollisionWorld() = default;
   /// Builds FCL objects for the cell, the head and the part; diagnostics on failure.
-  static std::unique_ptr<CollisionWorld> Create(const scene::Scene& scene,
-                                                const RobotModel& robot, DiagnosticSink& sink);
+  static std::unique_ptr<CollisionWorld> Create(const scene::Scene& scene, const RobotModel& robot,
+                                                DiagnosticSink& sink);
   /// Checks the cell at joints `q` (model order).
   virtual CollisionResult Check(const JointVector& q, const CollisionOptions& options) = 0;
   /// Largest distance any point of a moving body travels between `a` and `b` (metres); the

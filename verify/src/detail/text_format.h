@@ -1,0 +1,27 @@
+#pragma once
+// Private text helpers shared by the report writers: UTF-8 decoding and encoding, and the
+// locale-independent number format of the text and JUnit reports.
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+namespace stitchsim::verify::detail {
+
+inline constexpr char32_t kInvalidCodePoint = 0xFFFFFFFF;
+inline constexpr char32_t kReplacementChar = 0xFFFD;
+
+/// Decodes the UTF-8 code point at `pos` and advances past it. A malformed sequence (bad lead
+/// or continuation byte, overlong form, surrogate, > U+10FFFF, cut short) consumes one byte
+/// and yields kInvalidCodePoint.
+char32_t NextCodePoint(std::string_view s, std::size_t& pos);
+/// Appends `cp` as UTF-8.
+void AppendUtf8(std::string& out, char32_t cp);
+/// Up to four significant digits, no exponent for 1e-4 <= |v| < 1e9, no trailing zeros.
+std::string FormatNumber(double v);
+/// "1 error" / "3 errors".
+std::string Count(long n, std::string_view singular, std::string_view plural);
+/// "line L stitch S" (parts that are 0 left out).
+std::string Location(int line, long stitch);
+
+}  // namespace stitchsim::verify::detail
