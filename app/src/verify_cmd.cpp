@@ -172,20 +172,13 @@ int RunVerify(const VerifyArgs& a) {
   report.cycle_time_s = run.time_s;
   verifier.Finish(report);
 
-  // Reports are written whole or not at all.
-  if (!a.report_json.empty()) {
-    if (std::string err = WriteFileAtomically(a.report_json, verify::ReportToJson(report));
-        !err.empty()) {
-      PrintError("io-write", err);
-      return kExitBadInput;
-    }
-  }
-  if (!a.junit.empty()) {
-    if (std::string err = WriteFileAtomically(a.junit, verify::ReportToJunit(report));
-        !err.empty()) {
-      PrintError("io-write", err);
-      return kExitBadInput;
-    }
+  // Reports are written whole or not at all, as a set.
+  std::vector<std::pair<std::filesystem::path, std::string>> reports;
+  if (!a.report_json.empty()) reports.emplace_back(a.report_json, verify::ReportToJson(report));
+  if (!a.junit.empty()) reports.emplace_back(a.junit, verify::ReportToJunit(report));
+  if (std::string err = WriteFilesAtomically(reports); !err.empty()) {
+    PrintError("io-write", err);
+    return kExitBadInput;
   }
   std::cout << verify::ReportToText(report);
   if (!a.snapshots.empty()) {

@@ -39,6 +39,45 @@ std::string WriteFileAtomically(const std::filesystem::path& path, std::string_v
   return {};
 }
 
+std::string WriteFilesAtomically(
+    const std::vector<std::pair<std::filesystem::path, std::string>>& files) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> temps;
+  auto cleanup = [&] {
+    std::error_code ignored;
+    for (const auto& t : temps) fs::remove(t, ignored);
+  };
+  for (const auto& [path, contents] : files) {
+    if (path.has_parent_path()) {
+      std::error_code ec;
+      fs::create_directories(path.parent_path(), ec);
+    }
+    fs::path tmp = path;
+    tmp += ".tmp." + std::to_string(::getpid());
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) {
+      cleanup();
+      return "cannot write " + tmp.string();
+    }
+    temps.push_back(tmp);
+    out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+    out.flush();
+    if (!out) {
+      cleanup();
+      return "write failed for " + tmp.string();
+    }
+  }
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    std::error_code ec;
+    fs::rename(temps[i], files[i].first, ec);
+    if (ec) {
+      cleanup();
+      return "cannot rename " + temps[i].string() + ": " + ec.message();
+    }
+  }
+  return {};
+}
+
 std::optional<std::string> ReadFile(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;

@@ -56,7 +56,6 @@ struct Motion {
   bool is_move;
   std::array<double, program::kAxisCount> before{};
   std::array<double, program::kAxisCount> after{};
-  bool has(Axis a) const { return true && static_cast<int>(a) >= 0; }
 };
 
 std::vector<Motion> Moves(const std::string& text) {

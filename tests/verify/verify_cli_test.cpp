@@ -120,6 +120,11 @@ TEST_F(VerifyCli, BadInputWritesNoReport) {
                    json.string()),
             2);
   EXPECT_FALSE(fs::exists(json));
+  // Reports are a set: when the JUnit file cannot be written, the JSON is not left behind.
+  EXPECT_EQ(RunCli("verify " + (dir_ / "decoupled.nc").string() + " --scene " + scene_ +
+                   " --report " + json.string() + " --junit /proc/stitchsim_nowhere/j.xml"),
+            2);
+  EXPECT_FALSE(fs::exists(json));
 }
 
 TEST_F(VerifyCli, SnapshotsHavePredictableNames) {

@@ -81,10 +81,8 @@ void Rule::RecordExceeded(FindingSeverity severity, double value, int line, long
   std::snprintf(buf, sizeof(buf), "%s %.4g %s exceeds the %s limit of %.4g %s", what.c_str(), value,
                 summary_.unit.c_str(), severity == FindingSeverity::kError ? "error" : "warning",
                 limit, summary_.unit.c_str());
-  const bool keep_sample = worst_sample_.has_value();
-  Record(severity, value, limit, line, stitch, subject, buf, nullptr);
-  (void)sample;
-  (void)keep_sample;
+  // Classify already kept the snapshot sample at the worst value.
+  Record(severity, value, limit, line, stitch, subject, buf, sample);
 }
 
 }  // namespace stitchsim::verify
