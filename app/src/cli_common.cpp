@@ -13,6 +13,14 @@ void PrintError(const std::string& code, const std::string& message) {
   std::cerr << "stitchsim: error[" << code << "]: " << message << '\n';
 }
 
+std::optional<program::Dialect> DialectOption(const std::string& file) {
+  if (file.empty()) return program::Dialect::Default();
+  DiagnosticSink sink;
+  auto dialect = program::LoadDialect(file, sink);
+  if (PrintDiagnostics(sink) || !dialect) return std::nullopt;
+  return dialect;
+}
+
 std::optional<LoadedScene> LoadSceneAndRobot(const std::filesystem::path& scene_file) {
   DiagnosticSink sink;
   LoadedScene out;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "stitchsim/common/diagnostics.h"
+#include "stitchsim/program/dialect.h"
 #include "stitchsim/scene/scene.h"
 #include "stitchsim/sim/robot_model.h"
 
@@ -20,6 +21,10 @@ bool PrintDiagnostics(const DiagnosticSink& sink);
 
 /// Prints "stitchsim: error[code]: message" for a problem that has no file position.
 void PrintError(const std::string& code, const std::string& message);
+
+/// The dialect of a --dialect option: the built-in one when `file` is empty, else the file;
+/// nullopt (diagnostics printed) when the file is bad.
+std::optional<program::Dialect> DialectOption(const std::string& file);
 
 /// A loaded scene and its robot model.
 struct LoadedScene {

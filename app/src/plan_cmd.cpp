@@ -26,6 +26,7 @@ namespace {
 
 struct PlanStitchArgs {
   std::string scene;
+  std::string dialect;
   std::string path;
   std::string mode = "auto";
   double stitch_length_mm = 0.0;
@@ -33,6 +34,8 @@ struct PlanStitchArgs {
 };
 
 int RunPlanStitch(const PlanStitchArgs& a) {
+  const std::optional<program::Dialect> dialect = DialectOption(a.dialect);
+  if (!dialect) return kExitBadInput;
   DiagnosticSink sink;
   auto scene = scene::LoadScene(a.scene, sink);
   if (PrintDiagnostics(sink) || !scene) return kExitBadInput;
@@ -58,7 +61,7 @@ int RunPlanStitch(const PlanStitchArgs& a) {
   // Written to memory first, then to the file whole (temporary file + rename).
   std::ostringstream text;
   const planner::ProgramSummary s =
-      planner::WriteStitchProgram(*planner, *scene, path->name, program::Dialect::Default(), text);
+      planner::WriteStitchProgram(*planner, *scene, path->name, *dialect, text);
   if (std::string err = WriteFileAtomically(a.output, text.str()); !err.empty()) {
     PrintError("io-write", err);
     return kExitBadInput;
@@ -301,6 +304,8 @@ void AddPlanCommand(CLI::App& app, int& exit_code) {
                   "Nominal stitch length in mm (default: the scene's)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("-o,--output", args->output, "Programme file to write")->required();
+  cmd->add_option("--dialect", args->dialect,
+                  "Dialect YAML file (default: the built-in dialect, models/dialect/default.yaml)");
   cmd->callback([args, &exit_code] { exit_code = RunPlanStitch(*args); });
 
   auto afp = std::make_shared<PlanAfpArgs>();

@@ -21,6 +21,7 @@ namespace {
 
 struct VerifyArgs {
   std::string program;
+  std::string dialect;
   std::string scene;
   std::string report_json;
   std::string junit;
@@ -133,7 +134,9 @@ int WriteCloseUp(const LoadedScene& ls, const sim::CellSetup& cell, const verify
 int RunVerify(const VerifyArgs& a) {
   auto ls = LoadSceneAndRobot(a.scene);
   if (!ls) return kExitBadInput;
-  const program::Dialect& dialect = program::Dialect::Default();
+  const std::optional<program::Dialect> custom = DialectOption(a.dialect);
+  if (!custom) return kExitBadInput;
+  const program::Dialect& dialect = *custom;
   std::ifstream probe(a.program, std::ios::binary);
   if (!probe) {
     PrintError("io-missing-file", "cannot open programme " + a.program);
@@ -213,6 +216,8 @@ void AddVerifyCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--scene", args->scene, "Scene YAML file")->required();
   cmd->add_option("--report", args->report_json, "Write the JSON report here");
   cmd->add_option("--junit", args->junit, "Write a JUnit XML report here");
+  cmd->add_option("--dialect", args->dialect,
+                  "Dialect YAML file (default: the built-in dialect, models/dialect/default.yaml)");
   cmd->add_option("--snapshots", args->snapshots,
                   "Write overview.png and <rule>.png close-ups into this folder");
   cmd->add_flag("--no-collision", args->no_collision,

@@ -139,4 +139,29 @@ TEST_F(VerifyCli, SnapshotsHavePredictableNames) {
   EXPECT_GT(fs::file_size(snaps / "overview.png"), 10000u);
 }
 
+// A site's post-processor: drive on D, path length on L, Euler order ZYX. The same dialect
+// file drives the planner and the verifier, and the text really uses it.
+TEST_F(VerifyCli, CustomDialectPlansAndVerifies) {
+  const fs::path dialect = dir_ / "site.yaml";
+  std::ofstream(dialect) << "name: site\nletters:\n  drive: \"D\"\n  path_length: \"L\"\n"
+                            "euler_order: \"ZYX\"\n";
+  const fs::path prog = dir_ / "site.nc";
+  ASSERT_EQ(RunCli("plan stitch --scene " + scene_ + " --mode decoupled --dialect " +
+                   dialect.string() + " -o " + prog.string()),
+            0);
+  const std::string text = Slurp(prog);
+  EXPECT_NE(text.find(" D5.006"), std::string::npos);
+  EXPECT_NE(text.find(" L5.006"), std::string::npos);
+  EXPECT_EQ(text.find(" U5.006"), std::string::npos);
+  EXPECT_EQ(
+      RunCli("verify " + prog.string() + " --scene " + scene_ + " --dialect " + dialect.string()),
+      0);
+  // Read with the default dialect, D and L are unknown words: bad input, exit 2.
+  EXPECT_EQ(RunCli("verify " + prog.string() + " --scene " + scene_), 2);
+  std::ofstream(dir_ / "broken.yaml") << "letters: [X, Y\n";
+  EXPECT_EQ(RunCli("verify " + prog.string() + " --scene " + scene_ + " --dialect " +
+                   (dir_ / "broken.yaml").string()),
+            2);
+}
+
 }  // namespace
