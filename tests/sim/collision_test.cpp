@@ -4,7 +4,11 @@
 #include "stitchsim/sim/collision.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -12,6 +16,7 @@
 #include <string>
 
 #include "sim_test_support.h"
+#include "stitchsim/planner/afp_planner.h"
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/program/dialect.h"
 #include "stitchsim/scene/scene.h"
@@ -182,13 +187,124 @@ TEST(CollisionTest, RailAndCarriageHitCaught) {
   }
   EXPECT_TRUE(carriage);
   EXPECT_EQ(r.min_clearance_m, 0.0);
-  // The scene's own row: the head hanging to the low coupon hits the turntable edge.
-  const verify::Report report = Verify(l, PlanDecoupled(*l.scene, l.scene->paths.front()), true);
+  // The scene's own row: the coupon hangs low beside the rail, its face tilted back towards
+  // it, the carriage parked 1 m along the rail; the head reaching down and back to it clips
+  // the rail beam with its body on every line, and nothing else is hit.
+  const std::string text = PlanDecoupled(*l.scene, l.scene->paths.front());
+  const verify::Report report = Verify(l, text, true);
   const verify::RuleSummary* cell = RuleOf(report, "collision.robot_cell");
   ASSERT_NE(cell, nullptr);
-  EXPECT_GT(cell->errors, 0);
-  EXPECT_NE(cell->findings.front().subject.find("rotator"), std::string::npos);
-  EXPECT_GT(cell->findings.front().line, 0);
+  EXPECT_GE(cell->errors, 80);
+  ASSERT_FALSE(cell->findings.empty());
+  for (const verify::Finding& f : cell->findings) {
+    EXPECT_NE(f.subject.find("|rail"), std::string::npos) << f.subject;
+    EXPECT_NE(f.subject.find("head:"), std::string::npos) << f.subject;
+    EXPECT_EQ(f.subject.find("rotator"), std::string::npos) << f.subject;
+    EXPECT_GT(f.line, 0);
+    EXPECT_GT(f.value, 0.0);
+  }
+  // The first finding is at the start pose (the G0 line), then one per stitch line.
+  EXPECT_EQ(LineOf(text, cell->findings.front().line).rfind("G0", 0), 0u)
+      << LineOf(text, cell->findings.front().line);
+  EXPECT_EQ(RuleOf(report, "collision.head_mold")->errors, 0);
+  EXPECT_EQ(report.errors, cell->errors) << "only the rail hit is expected";
+}
+
+std::string PlanAfp(const scene::Scene& scene, double incline_deg) {
+  DiagnosticSink sink;
+  planner::AfpPlanOptions options;
+  options.lay_angle_rad = 45.0 * kDeg;
+  options.incline_rad = incline_deg * kDeg;
+  auto plan = planner::PlanAfpCourse(scene, nullptr, options, sink);
+  EXPECT_TRUE(plan) << testing::FormatAll(sink);
+  std::ostringstream out;
+  if (plan) planner::WriteAfpProgram(*plan, scene, program::Dialect::Default(), out);
+  return out.str();
+}
+
+// Seed 003: in the 300 mm concave cylinder the head's approach side (the feed module ahead
+// of the roller) runs into the mold at normal pressure; leaning the head back along the
+// course tangent clears it, with nothing else in the way.
+TEST(CollisionTest, AfpNormalPressureHitsSmallConcaveMoldAndInclinationClears) {
+  Loaded l = Load(SourceDir() / "scenes" / "concave_cylinder_small.yaml");
+  ASSERT_TRUE(l.world);
+  const std::string normal = PlanAfp(*l.scene, 0.0);
+  const verify::Report at_normal = Verify(l, normal, true);
+  const verify::RuleSummary* head = RuleOf(at_normal, "collision.head_mold");
+  ASSERT_NE(head, nullptr);
+  ASSERT_GT(head->errors, 0);
+  double deepest = 0.0;
+  for (const verify::Finding& f : head->findings) {
+    EXPECT_GT(f.line, 0);
+    EXPECT_GT(f.value, 0.0);
+    // The roller on the laminate is the one allowed contact.
+    EXPECT_EQ(f.subject.find("roller|"), std::string::npos) << f.subject;
+    EXPECT_NE(f.subject.find("head:feed_module"), std::string::npos) << f.subject;
+    deepest = std::max(deepest, f.value);
+  }
+  EXPECT_GT(deepest, 5.0);
+  EXPECT_EQ(LineOf(normal, head->findings.front().line).rfind("G", 0), 0u);
+  // Normal pressure is reachable: the mold hit is the only error.
+  EXPECT_EQ(at_normal.errors, head->errors);
+  // Leaning back 10 deg: clean, every rule.
+  const verify::Report leaned = Verify(l, PlanAfp(*l.scene, -10.0), true);
+  EXPECT_EQ(leaned.errors, 0);
+  for (const auto& s : leaned.rules) {
+    EXPECT_EQ(s.errors, 0) << s.id << ": "
+                           << (s.findings.empty() ? "" : s.findings.front().message);
+  }
+  // Leaning forward makes it worse.
+  EXPECT_GT(RuleOf(Verify(l, PlanAfp(*l.scene, 10.0), true), "collision.head_mold")->errors, 0);
+}
+
+int RunCli(const std::string& args, const std::filesystem::path& out) {
+  const std::string cmd =
+      (std::filesystem::path(STITCHSIM_BINARY_DIR) / "app" / "stitchsim").string() + " " + args +
+      " >" + out.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string Slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The same through the CLI: `plan afp --incline 0` then `verify` finds collision.head_mold
+// (exit 1); `--incline auto` picks a non-zero lean whose programme verifies clean (exit 0).
+TEST(CollisionTest, AfpInclineAutoClearsTheSmallConcaveMoldCli) {
+  const auto dir = std::filesystem::temp_directory_path() / "stitchsim_collision_afp_cli";
+  std::filesystem::create_directories(dir);
+  const std::string scene = (SourceDir() / "scenes" / "concave_cylinder_small.yaml").string();
+  const auto p0 = dir / "p0.nc";
+  const auto pa = dir / "pa.nc";
+  ASSERT_EQ(RunCli("plan afp --scene " + scene + " --lay-angle 45 --incline 0 -o " + p0.string(),
+                   dir / "plan0.txt"),
+            0)
+      << Slurp(dir / "plan0.txt");
+  EXPECT_EQ(RunCli("verify " + p0.string() + " --scene " + scene, dir / "verify0.txt"), 1);
+  const std::string v0 = Slurp(dir / "verify0.txt");
+  EXPECT_NE(v0.find("head:feed_module hits"), std::string::npos) << v0;
+  EXPECT_NE(v0.find("depth"), std::string::npos) << v0;
+  EXPECT_NE(v0.find("collision.head_mold: "), std::string::npos) << v0;
+
+  ASSERT_EQ(RunCli("plan afp --scene " + scene + " --lay-angle 45 --incline auto -o " + pa.string(),
+                   dir / "plana.txt"),
+            0)
+      << Slurp(dir / "plana.txt");
+  const std::string plan = Slurp(dir / "plana.txt");
+  const std::string tag = "incline auto: ";
+  const auto at = plan.find(tag);
+  ASSERT_NE(at, std::string::npos) << plan;
+  const double theta = std::stod(plan.substr(at + tag.size()));
+  EXPECT_NE(theta, 0.0);
+  EXPECT_LE(std::abs(theta), 20.0);
+  EXPECT_NE(plan.find("incline 0.000 deg: not clear"), std::string::npos) << plan;
+  EXPECT_EQ(RunCli("verify " + pa.string() + " --scene " + scene, dir / "verifya.txt"), 0)
+      << Slurp(dir / "verifya.txt");
+  EXPECT_EQ(Slurp(dir / "verifya.txt").rfind("PASS", 0), 0u) << Slurp(dir / "verifya.txt");
 }
 
 // Every bundled stitching scene's decoupled programme verifies free of collision findings,
