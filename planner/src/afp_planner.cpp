@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <ostream>
 
+#include "detail/program_text.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/block.h"
 #include "stitchsim/program/writer.h"
@@ -259,13 +260,7 @@ void WriteAfpProgram(const AfpPlan& plan, const scene::Scene& scene,
   w.WriteHeader(header);
 
   program::Block b;
-  b.units = LengthUnit::kMillimetre;
-  b.absolute = true;
-  w.Write(b);
-  b.Clear();
-  b.tool = scene.head.tool_number;
-  b.m_codes = {dialect.m.tool_change};
-  w.Write(b);
+  detail::WriteSetup(w, b, dialect, scene.head.tool_number);
 
   Eigen::Vector3d angles_rad = Eigen::Vector3d::Zero();
   bool have_angles = false;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <ostream>
 
+#include "detail/program_text.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/block.h"
 #include "stitchsim/program/writer.h"
@@ -214,15 +215,7 @@ ProgramSummary WriteStitchProgram(StitchPathPlanner& planner, const scene::Scene
     blk[Axis::kB] = angles_deg.y();
     blk[Axis::kC] = angles_deg.z();
   };
-  // Set-up: units, absolute, head.
-  b.Clear();
-  b.units = LengthUnit::kMillimetre;
-  b.absolute = true;
-  w.Write(b);
-  b.Clear();
-  b.tool = scene.head.tool_number;
-  b.m_codes = {dialect.m.tool_change};
-  w.Write(b);
+  detail::WriteSetup(w, b, dialect, scene.head.tool_number);
   // Start line: the first stitch's pose, both cumulative axes at zero.
   b.Clear();
   b.motion = program::Motion::kRapid;
