@@ -56,6 +56,7 @@ std::optional<StitchPathPlanner> StitchPathPlanner::Create(const scene::Scene& s
     return std::nullopt;
   }
   p.mode_ = options.mode;
+  p.evaluate_coupled_ = options.mode == Mode::kAuto || options.evaluate_coupled;
   p.count_ = *n;
   p.stitch_length_mm_ = p.path_.Length() / *n;
   p.process_ = process::MakeProcessModel(scene, p.stitch_length_mm_);
@@ -133,8 +134,15 @@ bool StitchPathPlanner::Next(PlannedStitch& out) {
   if (i == count_ && path_.Closed()) end_frame.translation() = start_pose_.translation();
   out.end = end_frame;
   out.segment_label = spec_->curve->Label(path_.SegmentAtArcLength((i - 0.5) * stitch_length_mm_));
-  out.coupled = process::EvaluateCoupledStitch(process_, out.start, out.end);
-  out.exceeded_limit = process::FirstExceededLimit(out.coupled, limits_);
+  if (evaluate_coupled_) {
+    // The drift of a linear + slerp window grows with the phase: 8 samples, the window end
+    // included, decide exactly as the verifier's fine sampling would.
+    out.coupled = process::EvaluateCoupledStitch(process_, out.start, out.end, 8);
+    out.exceeded_limit = process::FirstExceededLimit(out.coupled, limits_);
+  } else {
+    out.coupled = process::WindowMetrics{};
+    out.exceeded_limit.clear();
+  }
   out.rotation_rad = geom::AngleBetween(out.start.linear(), out.end.linear());
   switch (mode_) {
     case Mode::kCoupled:

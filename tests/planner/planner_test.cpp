@@ -277,6 +277,28 @@ TEST(AutoMode, SeedGuidanceHolds) {
   }
 }
 
+TEST(Planner, CoupledMetricsOnRequestInFixedModes) {
+  auto s = Load("circle_8in");
+  for (bool evaluate : {false, true}) {
+    StitchPlanOptions o;
+    o.mode = Mode::kDecoupled;
+    o.evaluate_coupled = evaluate;
+    DiagnosticSink sink;
+    auto planner = StitchPathPlanner::Create(*s, s->paths.front(), o, sink);
+    ASSERT_TRUE(planner);
+    PlannedStitch st;
+    ASSERT_TRUE(planner->Next(st));
+    EXPECT_TRUE(st.decoupled);
+    if (evaluate) {
+      EXPECT_GT(st.coupled.MaxSideForceMm(), 0.2);
+      EXPECT_EQ(st.exceeded_limit, "needle.side_force");
+    } else {
+      EXPECT_TRUE(st.coupled.side_force_mm.empty());
+      EXPECT_TRUE(st.exceeded_limit.empty());
+    }
+  }
+}
+
 TEST(AutoMode, BladeSparDecouplesOnlyTheTurnBetweenItsSegments) {
   auto s = Load("blade_demo");
   const auto st = AutoStitches(*s, "spar");

@@ -25,6 +25,9 @@ std::string_view ToString(Mode mode);
 struct StitchPlanOptions {
   Mode mode = Mode::kAuto;
   std::optional<double> nominal_stitch_length_mm;  ///< default: the scene's
+  /// Evaluate what a coupled line would do for every stitch even when the mode does not
+  /// need it (auto mode always does).
+  bool evaluate_coupled = false;
 };
 
 /// One stitch as planned. Poses are tool-point poses in the part frame (translation mm).
@@ -35,8 +38,8 @@ struct PlannedStitch {
   double arc_length_end_mm = 0.0;  ///< = index * stitch length
   std::string segment_label;       ///< 2D segment the stitch's chord midpoint is on
   bool decoupled = false;          ///< translation then rotation (two lines)
-  /// What a coupled line would do to the needles (the auto-mode decision input), always
-  /// computed: side force per needle, rotation in the preform.
+  /// What a coupled line would do to the needles (the auto-mode decision input): side force
+  /// per needle, rotation in the preform. Computed in auto mode or with evaluate_coupled.
   process::WindowMetrics coupled;
   std::string exceeded_limit;  ///< rule the coupled stitch would break; empty if none
   double rotation_rad = 0.0;   ///< head rotation from start to end frame
@@ -82,6 +85,7 @@ class StitchPathPlanner {
   process::ProcessModel process_;
   process::NeedleLimits limits_;
   Mode mode_ = Mode::kAuto;
+  bool evaluate_coupled_ = true;
   int count_ = 0;
   double stitch_length_mm_ = 0.0;
   int next_index_ = 1;

@@ -1,0 +1,583 @@
+#include "stitchsim/planner/raster_planner.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numeric>
+#include <ostream>
+#include <sstream>
+
+#include "stitchsim/geom/rotation.h"
+#include "stitchsim/program/block.h"
+#include "stitchsim/program/writer.h"
+
+namespace stitchsim::planner {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+// Traverse speed and retract / lower time for the time estimate (the head spec has none).
+constexpr double kTraverseMmPerMin = 20000.0;
+constexpr double kRetractLowerS = 0.5;
+
+// A piece of one row to stitch: v, and the u-range of clear surface.
+struct RowPiece {
+  long row = 0;  ///< global row index (direction parity)
+  double v = 0.0;
+  double u_begin = 0.0;
+  double u_end = 0.0;
+};
+
+// A region handed to one head: a row (jump) or a bay (serpentine).
+struct Region {
+  std::vector<RowPiece> pieces;
+  long stitches = 0;
+};
+
+// Free u-intervals of the row at v inside [u0, u1].
+std::vector<std::pair<double, double>> FreeIntervals(const std::vector<Footprint>& fps, double v,
+                                                     double u0, double u1) {
+  std::vector<std::pair<double, double>> blocked;
+  for (const Footprint& f : fps) {
+    double a = 0, b = 0;
+    if (f.RowInterval(v, a, b) && b > u0 && a < u1) blocked.emplace_back(a, b);
+  }
+  std::sort(blocked.begin(), blocked.end());
+  std::vector<std::pair<double, double>> free;
+  double at = u0;
+  for (const auto& [a, b] : blocked) {
+    if (a > at) free.emplace_back(at, std::min(a, u1));
+    at = std::max(at, b);
+    if (at >= u1) break;
+  }
+  if (at < u1) free.emplace_back(at, u1);
+  return free;
+}
+
+// Steps along a row at an exact 3D chord of `pitch`.
+class RowStepper {
+ public:
+  RowStepper(const geom::Surface& s, double pitch) : s_(s), pitch_(pitch) {}
+  /// u of the point one pitch (chord) from u in direction dir (+1/-1).
+  double Next(double u, double v, double dir) const {
+    const Eigen::Vector3d p = s_.Point({u, v});
+    const double speed = s_.Jacobian({u, v}).col(0).norm();
+    double du = pitch_ / std::max(speed, 1e-9);
+    for (int it = 0; it < 3; ++it) {
+      const double d = (s_.Point({u + dir * du, v}) - p).norm();
+      if (d <= 0) break;
+      du *= pitch_ / d;
+    }
+    return u + dir * du;
+  }
+  /// Stitches that fit in [a, b] starting at a (dir > 0) or at b (dir < 0).
+  long Count(double a, double b, double v, double dir = 1.0) const {
+    long n = 0;
+    double u = dir > 0 ? a : b;
+    while (true) {
+      const double next = Next(u, v, dir);
+      if (next > b + 1e-9 || next < a - 1e-9) break;
+      u = next;
+      ++n;
+    }
+    return n;
+  }
+
+ private:
+  const geom::Surface& s_;
+  double pitch_;
+};
+
+std::string Num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.6f", v);
+  return buf;
+}
+
+}  // namespace
+
+std::optional<RasterStrategy> ParseRasterStrategy(std::string_view text) {
+  if (text == "jump") return RasterStrategy::kJump;
+  if (text == "serpentine") return RasterStrategy::kSerpentine;
+  return std::nullopt;
+}
+
+std::string_view ToString(RasterStrategy strategy) {
+  return strategy == RasterStrategy::kJump ? "jump" : "serpentine";
+}
+
+// ---- footprints ---------------------------------------------------------------------------
+
+bool Footprint::Contains(const Eigen::Vector2d& p) const {
+  const Eigen::Vector2d d = p - centre;
+  return std::abs(d.dot(axis_x)) <= half_mm.x() && std::abs(d.dot(axis_y)) <= half_mm.y();
+}
+
+bool Footprint::Crosses(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const {
+  const Eigen::Vector2d la((a - centre).dot(axis_x), (a - centre).dot(axis_y));
+  const Eigen::Vector2d lb((b - centre).dot(axis_x), (b - centre).dot(axis_y));
+  const Eigen::Vector2d d = lb - la;
+  double t0 = 0.0, t1 = 1.0;
+  for (int k = 0; k < 2; ++k) {
+    if (std::abs(d[k]) < 1e-12) {
+      if (std::abs(la[k]) > half_mm[k]) return false;
+      continue;
+    }
+    double ta = (-half_mm[k] - la[k]) / d[k];
+    double tb = (half_mm[k] - la[k]) / d[k];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+bool Footprint::RowInterval(double y, double& x_min, double& x_max) const {
+  // The line (t, y): solve |(p - c).ax| <= hx and |(p - c).ay| <= hy for t.
+  double lo = -1e300, hi = 1e300;
+  for (int k = 0; k < 2; ++k) {
+    const Eigen::Vector2d& ax = k == 0 ? axis_x : axis_y;
+    const double base = (y - centre.y()) * ax.y() - centre.x() * ax.x();
+    if (std::abs(ax.x()) < 1e-12) {
+      if (std::abs(base) > half_mm[k]) return false;
+      continue;
+    }
+    double a = (-half_mm[k] - base) / ax.x();
+    double b = (half_mm[k] - base) / ax.x();
+    if (a > b) std::swap(a, b);
+    lo = std::max(lo, a);
+    hi = std::min(hi, b);
+  }
+  if (lo > hi) return false;
+  x_min = lo;
+  x_max = hi;
+  return true;
+}
+
+std::vector<Footprint> MakeFootprints(const scene::Scene& scene, double margin_mm) {
+  std::vector<Footprint> out;
+  for (const scene::Constraint& c : scene.constraints) {
+    Footprint f;
+    f.name = c.name;
+    Eigen::Vector3d half = 0.5 * c.size_mm;
+    Eigen::Matrix3d r = c.pose_mm.linear();
+    if (c.shape == scene::Constraint::Shape::kMesh && !c.mesh.vertices.empty()) {
+      Eigen::AlignedBox3d box;
+      for (const auto& v : c.mesh.vertices) box.extend(v);
+      f.centre = box.center().head<2>();
+      half = 0.5 * box.sizes();
+      r.setIdentity();
+    } else {
+      f.centre = c.pose_mm.translation().head<2>();
+    }
+    Eigen::Vector2d ax = r.col(0).head<2>();
+    if (ax.norm() < 1e-9) ax = Eigen::Vector2d::UnitX();
+    f.axis_x = ax.normalized();
+    f.axis_y = Eigen::Vector2d(-f.axis_x.y(), f.axis_x.x());
+    for (int k = 0; k < 2; ++k) {
+      const Eigen::Vector2d& a = k == 0 ? f.axis_x : f.axis_y;
+      double h = 0.0;
+      for (int i = 0; i < 3; ++i) h += std::abs(Eigen::Vector2d(r.col(i).head<2>()).dot(a)) * half[i];
+      f.half_mm[k] = h + margin_mm;
+    }
+    out.push_back(f);
+  }
+  return out;
+}
+
+// ---- user code library ----------------------------------------------------------------------
+
+std::optional<UserCodeLibrary> ParseUserCodeLibrary(std::string_view yaml,
+                                                    const std::string& file_name,
+                                                    const program::Dialect& dialect,
+                                                    DiagnosticSink& sink) {
+  auto at = [&](const YAML::Node& n) {
+    return SourceLocation{file_name, n.Mark().line + 1, n.Mark().column + 1};
+  };
+  UserCodeLibrary lib;
+  const std::size_t errors_before = sink.ErrorCount();
+  try {
+    const YAML::Node root = YAML::Load(std::string(yaml));
+    const YAML::Node blocks = root["blocks"];
+    if (!blocks || !blocks.IsSequence()) {
+      sink.Error("library-no-blocks", {file_name, 1, 1}, "expected a 'blocks:' list");
+      return std::nullopt;
+    }
+    for (const YAML::Node& b : blocks) {
+      UserCodeBlock blk;
+      blk.name = b["name"] ? b["name"].as<std::string>() : "unnamed";
+      const std::string event = b["at"] ? b["at"].as<std::string>() : "";
+      if (event == "every_stitches") {
+        blk.event = UserCodeBlock::Event::kEveryStitches;
+        blk.every_stitches = b["every"] ? b["every"].as<long>() : 0;
+        if (blk.every_stitches <= 0) {
+          sink.Error("library-bad-every", at(b), blk.name + ": 'every' must be a positive count");
+        }
+      } else if (event == "row_start") {
+        blk.event = UserCodeBlock::Event::kRowStart;
+      } else if (event == "before_jump") {
+        blk.event = UserCodeBlock::Event::kBeforeJump;
+      } else {
+        sink.Error("library-bad-event", at(b),
+                   blk.name + ": 'at' must be every_stitches, row_start or before_jump");
+      }
+      if (b["m"]) {
+        for (const YAML::Node& m : b["m"]) blk.m_codes.push_back(m.as<int>());
+      }
+      if (blk.m_codes.empty() || blk.m_codes.size() > program::kMaxMCodesPerBlock) {
+        sink.Error("library-bad-m", at(b), blk.name + ": 'm' must list 1 to 4 M codes");
+      }
+      for (int m : blk.m_codes) {
+        if (m < dialect.m.user_macro_first || m > dialect.m.user_macro_last) {
+          sink.Error("library-m-not-user", at(b),
+                     blk.name + ": M" + std::to_string(m) + " is outside the user range M" +
+                         std::to_string(dialect.m.user_macro_first) + "-M" +
+                         std::to_string(dialect.m.user_macro_last));
+        }
+      }
+      if (b["p"]) blk.param = b["p"].as<int>();
+      lib.blocks.push_back(std::move(blk));
+    }
+  } catch (const YAML::Exception& e) {
+    sink.Error("library-yaml", {file_name, e.mark.line + 1, e.mark.column + 1}, e.msg);
+    return std::nullopt;
+  }
+  if (sink.ErrorCount() > errors_before) return std::nullopt;
+  return lib;
+}
+
+std::optional<UserCodeLibrary> LoadUserCodeLibrary(const std::filesystem::path& file,
+                                                   const program::Dialect& dialect,
+                                                   DiagnosticSink& sink) {
+  std::ifstream in(file);
+  if (!in) {
+    sink.Error("library-unreadable", {file.string(), 0, 0}, "cannot read the code library");
+    return std::nullopt;
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return ParseUserCodeLibrary(text.str(), file.string(), dialect, sink);
+}
+
+// ---- planning -------------------------------------------------------------------------------
+
+namespace {
+
+struct Plan {
+  std::vector<Region> regions;
+  std::vector<std::vector<std::size_t>> per_head;  // region indices per head (0-based)
+};
+
+std::vector<Region> JumpRegions(const std::vector<Footprint>& fps, const Eigen::AlignedBox2d& box,
+                                double spacing) {
+  std::vector<Region> out;
+  const long rows = static_cast<long>(std::floor(box.sizes().y() / spacing + 1e-9)) + 1;
+  for (long r = 0; r < rows; ++r) {
+    const double v = box.min().y() + r * spacing;
+    Region reg;
+    for (const auto& [a, b] : FreeIntervals(fps, v, box.min().x(), box.max().x())) {
+      reg.pieces.push_back({r, v, a, b});
+    }
+    if (!reg.pieces.empty()) out.push_back(std::move(reg));
+  }
+  return out;
+}
+
+// Bays: the grid cut at every footprint's u and v edges; cells ordered band by band (v),
+// snaking along u.
+std::vector<Region> BayRegions(const std::vector<Footprint>& fps, const Eigen::AlignedBox2d& box,
+                               double spacing) {
+  std::vector<double> us = {box.min().x(), box.max().x()};
+  std::vector<double> vs = {box.min().y(), box.max().y() + 1e-6};
+  for (const Footprint& f : fps) {
+    const Eigen::Vector2d ext = f.axis_x.cwiseAbs() * f.half_mm.x() + f.axis_y.cwiseAbs() * f.half_mm.y();
+    for (double s : {-1.0, 1.0}) {
+      const double u = f.centre.x() + s * ext.x();
+      const double v = f.centre.y() + s * ext.y();
+      if (u > box.min().x() && u < box.max().x()) us.push_back(u);
+      if (v > box.min().y() && v < box.max().y()) vs.push_back(v);
+    }
+  }
+  std::sort(us.begin(), us.end());
+  us.erase(std::unique(us.begin(), us.end()), us.end());
+  std::sort(vs.begin(), vs.end());
+  vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+  std::vector<Region> out;
+  for (std::size_t j = 0; j + 1 < vs.size(); ++j) {
+    const long r0 = static_cast<long>(std::ceil((vs[j] - box.min().y()) / spacing - 1e-9));
+    const long r1 = static_cast<long>(std::ceil((vs[j + 1] - box.min().y()) / spacing - 1e-9));
+    for (std::size_t ii = 0; ii + 1 < us.size(); ++ii) {
+      const std::size_t i = j % 2 == 0 ? ii : us.size() - 2 - ii;
+      Region reg;
+      for (long r = r0; r < r1; ++r) {
+        const double v = box.min().y() + r * spacing;
+        if (v > box.max().y() + 1e-9) break;
+        for (const auto& [a, b] : FreeIntervals(fps, v, us[i], us[i + 1])) {
+          reg.pieces.push_back({r, v, a, b});
+        }
+      }
+      if (!reg.pieces.empty()) out.push_back(std::move(reg));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene,
+                                                const RasterOptions& o,
+                                                const program::Dialect& dialect,
+                                                std::ostream& out, DiagnosticSink& sink) {
+  using program::Axis;
+  const SourceLocation where{scene.file.string(), 0, 0};
+  const geom::Surface& surface = *scene.surface;
+  if (surface.Kind() != "plane" && surface.Kind() != "polynomial") {
+    sink.Error("plan-raster-surface", where,
+               "raster planning needs a height-field surface (plane or polynomial), not '" +
+                   surface.Kind() + "'");
+    return std::nullopt;
+  }
+  if (!(o.pitch_mm > 0) || !(o.row_spacing_mm > 0) || !(o.margin_mm >= 0) || o.heads < 1) {
+    sink.Error("plan-raster-options", where,
+               "pitch and row spacing must be positive, margin >= 0, heads >= 1");
+    return std::nullopt;
+  }
+  std::vector<int> working;
+  for (int h = 1; h <= o.heads; ++h) {
+    if (std::find(o.out_of_service.begin(), o.out_of_service.end(), h) == o.out_of_service.end())
+      working.push_back(h);
+  }
+  if (working.empty()) {
+    sink.Error("plan-raster-no-head", where, "every head is out of service");
+    return std::nullopt;
+  }
+  const geom::Domain2 dom = surface.Domain();
+  Eigen::AlignedBox2d box(dom.min, dom.max);
+  if (o.region) box = box.intersection(*o.region);
+  box.min().array() += o.edge_margin_mm;
+  box.max().array() -= o.edge_margin_mm;
+  if (box.isEmpty() || box.sizes().minCoeff() <= 0) {
+    sink.Error("plan-raster-empty-region", where, "the stitch region is empty");
+    return std::nullopt;
+  }
+
+  const std::vector<Footprint> fps = MakeFootprints(scene, o.margin_mm);
+  const RowStepper stepper(surface, o.pitch_mm);
+  std::vector<Region> regions = o.strategy == RasterStrategy::kJump
+                                    ? JumpRegions(fps, box, o.row_spacing_mm)
+                                    : BayRegions(fps, box, o.row_spacing_mm);
+  // Regions to heads: contiguous runs of nearly equal stitch count.
+  long total = 0;
+  if (working.size() > 1) {
+    for (Region& r : regions) {
+      for (const RowPiece& p : r.pieces) r.stitches += stepper.Count(p.u_begin, p.u_end, p.v);
+      total += r.stitches;
+    }
+  }
+  std::vector<std::vector<std::size_t>> per_head(working.size());
+  {
+    long acc = 0;
+    std::size_t h = 0;
+    for (std::size_t i = 0; i < regions.size(); ++i) {
+      // Move on when this region's middle is past the head's share.
+      while (h + 1 < working.size() &&
+             static_cast<double>(acc) + 0.5 * static_cast<double>(regions[i].stitches) >
+                 static_cast<double>(total) * static_cast<double>(h + 1) /
+                     static_cast<double>(working.size())) {
+        ++h;
+      }
+      per_head[h].push_back(i);
+      acc += regions[i].stitches;
+    }
+  }
+
+  const geom::EulerOrder order =
+      geom::ParseEulerOrder(dialect.euler_order).value_or(geom::EulerOrder{});
+  const auto& st = scene.head.stitch;
+  const double feed_mm_min = st.stitch_rate_per_min * o.pitch_mm;
+  const double stitch_time_s = 60.0 / st.stitch_rate_per_min;
+
+  RasterSummary sum;
+  sum.head_stitches.assign(static_cast<std::size_t>(o.heads), 0);
+  program::ProgramWriter w(out, dialect);
+  w.WriteMark();
+  program::ProgramHeader header;
+  header.entries = {{"scene", scene.name},
+                    {"head", scene.head.name},
+                    {"raster", std::string(ToString(o.strategy))},
+                    {"stitch_length_mm", Num(o.pitch_mm)},
+                    {"row_spacing_mm", Num(o.row_spacing_mm)},
+                    {"heads", std::to_string(o.heads)}};
+  w.WriteHeader(header);
+  program::Block b;
+  b.units = LengthUnit::kMillimetre;
+  b.absolute = true;
+  w.Write(b);
+  b.Clear();
+  b.tool = scene.head.tool_number;
+  b.m_codes = {dialect.m.tool_change};
+  w.Write(b);
+
+  Eigen::Vector3d angles_rad = Eigen::Vector3d::Zero();
+  bool have_angles = false;
+  Eigen::Matrix3d angles_of = Eigen::Matrix3d::Zero();
+  auto set_pose = [&](program::Block& blk, const Eigen::Vector3d& p, const Eigen::Matrix3d& r) {
+    if (!have_angles || r != angles_of) {
+      angles_rad = geom::EulerFromRotation(order, r, have_angles ? &angles_rad : nullptr);
+      angles_of = r;
+      have_angles = true;
+    }
+    blk[Axis::kX] = p.x();
+    blk[Axis::kY] = p.y();
+    blk[Axis::kZ] = p.z();
+    blk[Axis::kA] = angles_rad.x() * kRadToDeg;
+    blk[Axis::kB] = angles_rad.y() * kRadToDeg;
+    blk[Axis::kC] = angles_rad.z() * kRadToDeg;
+  };
+  auto frame = [&](double u, double v, double dir) {
+    const Eigen::Vector2d uv(u, v);
+    const Eigen::Vector3d t = dir * surface.Jacobian(uv).col(0);
+    return geom::FrameFromNormalAndDirection(surface.Normal(uv), t).value_or(
+        Eigen::Matrix3d::Identity());
+  };
+  auto emit_user = [&](UserCodeBlock::Event ev) {
+    for (const UserCodeBlock& u : o.library.blocks) {
+      if (u.event != ev) continue;
+      b.Clear();
+      b.m_codes = u.m_codes;
+      b.param = u.param;
+      w.Write(b);
+      ++sum.user_blocks;
+    }
+  };
+  auto m_line = [&](std::initializer_list<int> codes) {
+    b.Clear();
+    b.m_codes = codes;
+    w.Write(b);
+  };
+
+  double drive = 0.0;  // U = V: stitched length so far
+  bool have_pos = false, stitching = false;
+  Eigen::Vector3d pos = Eigen::Vector3d::Zero();
+  bool feed_written = false;
+  // Move to the start of a piece: needles out; retract if the straight path crosses a
+  // footprint or `force_retract`.
+  auto transit = [&](const Eigen::Vector3d& to, const Eigen::Matrix3d& r, bool force_retract) {
+    bool crosses = force_retract;
+    if (have_pos && !crosses) {
+      for (const Footprint& f : fps) {
+        if (f.Crosses(pos.head<2>(), to.head<2>())) {
+          crosses = true;
+          break;
+        }
+      }
+    }
+    const bool retract = have_pos && crosses;
+    if (stitching) {
+      m_line({dialect.m.stitch_off});
+      stitching = false;
+    }
+    if (retract) {
+      emit_user(UserCodeBlock::Event::kBeforeJump);
+      m_line({dialect.m.head_retract});
+      ++sum.jumps;
+      sum.traverse_s += kRetractLowerS;
+    } else if (have_pos) {
+      ++sum.turns;
+    }
+    b.Clear();
+    b.motion = program::Motion::kRapid;
+    set_pose(b, to, r);
+    b[Axis::kDrive] = drive;
+    b[Axis::kPathLength] = drive;
+    w.Write(b);
+    ++sum.motion_lines;
+    if (have_pos) sum.traverse_s += (to - pos).norm() / kTraverseMmPerMin * 60.0;
+    if (retract) m_line({dialect.m.head_lower});
+    pos = to;
+    have_pos = true;
+  };
+
+  for (std::size_t hi = 0; hi < working.size(); ++hi) {
+    const int head = working[hi];
+    if (per_head[hi].empty()) continue;
+    if (working.size() > 1 || o.heads > 1) {
+      if (stitching) {
+        m_line({dialect.m.stitch_off});
+        stitching = false;
+      }
+      b.Clear();
+      b.m_codes = {dialect.m.head_section};
+      b.param = head;
+      b.comment = "head " + std::to_string(head);
+      w.Write(b);
+    }
+    bool first_in_head = true;
+    for (std::size_t ri : per_head[hi]) {
+      const Region& reg = regions[ri];
+      ++sum.bays;
+      bool first_in_region = true;
+      long prev_row = -1;
+      for (const RowPiece& piece : reg.pieces) {
+        const double dir = piece.row % 2 == 0 ? 1.0 : -1.0;
+        // Whole stitches from the piece's start end (the start end depends on direction).
+        const long n = stepper.Count(piece.u_begin, piece.u_end, piece.v, dir);
+        if (n == 0) continue;
+        double u = dir > 0 ? piece.u_begin : piece.u_end;
+        const Eigen::Matrix3d r = frame(u, piece.v, dir);
+        // Jump: pieces of one row are separated by a constraint; serpentine: new bay.
+        const bool force_retract =
+            (first_in_region && !first_in_head) || (prev_row == piece.row);
+        transit(surface.Point({u, piece.v}), r, force_retract);
+        first_in_head = false;
+        first_in_region = false;
+        if (prev_row != piece.row) {
+          ++sum.rows;
+          emit_user(UserCodeBlock::Event::kRowStart);
+        }
+        prev_row = piece.row;
+        m_line({dialect.m.stitch_on});
+        stitching = true;
+        for (long k = 0; k < n; ++k) {
+          const double next = stepper.Next(u, piece.v, dir);
+          drive += o.pitch_mm;
+          const Eigen::Vector3d p = surface.Point({next, piece.v});
+          b.Clear();
+          b.motion = program::Motion::kFeed;
+          set_pose(b, p, frame(next, piece.v, dir));
+          b[Axis::kDrive] = drive;
+          b[Axis::kPathLength] = drive;
+          if (!feed_written) b.feed = feed_mm_min;
+          feed_written = true;
+          w.Write(b);
+          ++sum.motion_lines;
+          ++sum.stitches;
+          ++sum.head_stitches[static_cast<std::size_t>(head - 1)];
+          sum.stitching_s += stitch_time_s;
+          pos = p;
+          u = next;
+          for (const UserCodeBlock& ub : o.library.blocks) {
+            if (ub.event == UserCodeBlock::Event::kEveryStitches &&
+                sum.stitches % ub.every_stitches == 0) {
+              b.Clear();
+              b.m_codes = ub.m_codes;
+              b.param = ub.param;
+              w.Write(b);
+              ++sum.user_blocks;
+            }
+          }
+        }
+      }
+    }
+  }
+  if (stitching) m_line({dialect.m.stitch_off});
+  m_line({dialect.m.program_end});
+  w.WriteMark();
+  w.Flush();
+  return sum;
+}
+
+}  // namespace stitchsim::planner
