@@ -1,9 +1,11 @@
 // `stitchsim plan stitch`: writes the stitching programme of one path of a scene.
 // `stitchsim plan afp`: writes the programme of one fibre-placement course (docs/afp.md).
+// `stitchsim plan raster`: constraint-aware raster of a large preform (docs/raster.md).
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -12,6 +14,7 @@
 #include "stitchsim/common/files.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/planner/afp_planner.h"
+#include "stitchsim/planner/raster_planner.h"
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/program/dialect.h"
 #include "stitchsim/program/modal_state.h"
@@ -288,6 +291,89 @@ int RunPlanAfp(const PlanAfpArgs& a) {
   return WriteAfpOutputs(*scene, *plan, a);
 }
 
+// ---- plan raster ---------------------------------------------------------------------------
+
+struct PlanRasterArgs {
+  std::string scene;
+  std::string dialect;
+  std::string strategy = "jump";
+  int heads = 1;
+  std::vector<int> out_of_service;
+  std::string library;
+  double pitch_in = 0.1;
+  double row_spacing_in = 0.2;
+  double margin_in = 0.1;
+  std::vector<double> region_in;  // u_min v_min u_max v_max, inches
+  std::string output;
+};
+
+int RunPlanRaster(const PlanRasterArgs& a) {
+  const std::optional<program::Dialect> dialect = DialectOption(a.dialect);
+  if (!dialect) return kExitBadInput;
+  DiagnosticSink sink;
+  auto scene = scene::LoadScene(a.scene, sink);
+  if (PrintDiagnostics(sink) || !scene) return kExitBadInput;
+  if (!scene->head.IsStitching()) {
+    PrintError("plan-wrong-head", a.scene + ": head '" + scene->head.name + "' does not stitch");
+    return kExitBadInput;
+  }
+  constexpr double kInch = 25.4;
+  planner::RasterOptions o;
+  o.strategy = *planner::ParseRasterStrategy(a.strategy);
+  o.pitch_mm = a.pitch_in * kInch;
+  o.row_spacing_mm = a.row_spacing_in * kInch;
+  o.margin_mm = a.margin_in * kInch;
+  o.heads = a.heads;
+  o.out_of_service = a.out_of_service;
+  if (a.region_in.size() == 4) {
+    o.region = Eigen::AlignedBox2d(Eigen::Vector2d(a.region_in[0], a.region_in[1]) * kInch,
+                                   Eigen::Vector2d(a.region_in[2], a.region_in[3]) * kInch);
+  }
+  if (!a.library.empty()) {
+    auto lib = planner::LoadUserCodeLibrary(a.library, *dialect, sink);
+    if (PrintDiagnostics(sink) || !lib) return kExitBadInput;
+    o.library = std::move(*lib);
+  }
+  // Streamed straight to a temporary file beside the output, renamed when complete: memory
+  // does not grow with the programme.
+  const std::string tmp = a.output + ".tmp";
+  std::optional<planner::RasterSummary> s;
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) {
+      PrintError("io-write", "cannot write " + tmp);
+      return kExitBadInput;
+    }
+    s = planner::WriteRasterProgram(*scene, o, *dialect, out, sink);
+    out.close();
+    if (!out) {
+      PrintError("io-write", "cannot write " + tmp);
+      return kExitBadInput;
+    }
+  }
+  if (PrintDiagnostics(sink) || !s) {
+    std::remove(tmp.c_str());
+    return kExitBadInput;
+  }
+  if (std::rename(tmp.c_str(), a.output.c_str()) != 0) {
+    PrintError("io-write", "cannot rename " + tmp + " to " + a.output);
+    return kExitBadInput;
+  }
+  std::string heads;
+  for (std::size_t h = 0; h < s->head_stitches.size(); ++h) {
+    heads += (h == 0 ? "" : ", ") + std::string("head ") + std::to_string(h + 1) + " " +
+             std::to_string(s->head_stitches[h]);
+  }
+  std::printf(
+      "%s: raster %s, pitch %.4f in, rows %.4f in apart: %ld stitches, %ld rows, %ld jumps, "
+      "%ld regions, %ld user blocks; per head: %s; estimated time %.1f s (stitching %.1f s, "
+      "traverse %.1f s) -> %s\n",
+      scene->name.c_str(), a.strategy.c_str(), a.pitch_in, a.row_spacing_in, s->stitches, s->rows,
+      s->jumps, s->bays, s->user_blocks, heads.c_str(), s->TotalS(), s->stitching_s, s->traverse_s,
+      a.output.c_str());
+  return kExitOk;
+}
+
 }  // namespace
 
 void AddPlanCommand(CLI::App& app, int& exit_code) {
@@ -330,6 +416,34 @@ void AddPlanCommand(CLI::App& app, int& exit_code) {
   afp_cmd->add_option("-o,--output", afp->output, "Programme file to write")->required();
   afp_cmd->add_option("--csv", afp->csv, "Per-point CSV (alpha, tangent, inclination, B, C)");
   afp_cmd->callback([afp, &exit_code] { exit_code = RunPlanAfp(*afp); });
+
+  auto ras = std::make_shared<PlanRasterArgs>();
+  CLI::App* ras_cmd = plan->add_subcommand(
+      "raster", "A constraint-aware raster of a large preform (seed 001): jump or serpentine");
+  ras_cmd->add_option("--scene", ras->scene, "Scene YAML file")->required();
+  ras_cmd->add_option("--strategy", ras->strategy, "jump | serpentine")
+      ->check(CLI::IsMember({"jump", "serpentine"}));
+  ras_cmd->add_option("--heads", ras->heads, "Heads the regions are split among")
+      ->check(CLI::PositiveNumber);
+  ras_cmd
+      ->add_option("--out-of-service", ras->out_of_service,
+                   "Heads (1-based) that get nothing, comma separated")
+      ->delimiter(',');
+  ras_cmd->add_option("--library", ras->library, "User code library YAML (docs/raster.md)");
+  ras_cmd->add_option("--pitch", ras->pitch_in, "Stitch pitch along a row, inches (0.1)")
+      ->check(CLI::PositiveNumber);
+  ras_cmd->add_option("--row-spacing", ras->row_spacing_in, "Row spacing, inches (0.2)")
+      ->check(CLI::PositiveNumber);
+  ras_cmd->add_option("--margin", ras->margin_in, "Clearance around constraints, inches (0.1)")
+      ->check(CLI::NonNegativeNumber);
+  ras_cmd
+      ->add_option("--region", ras->region_in,
+                   "Stitch only u_min,v_min,u_max,v_max (inches, part frame)")
+      ->delimiter(',')
+      ->expected(4);
+  ras_cmd->add_option("-o,--output", ras->output, "Programme file to write")->required();
+  ras_cmd->add_option("--dialect", ras->dialect, "Dialect YAML file (default: built-in)");
+  ras_cmd->callback([ras, &exit_code] { exit_code = RunPlanRaster(*ras); });
 }
 
 }  // namespace stitchsim::app

@@ -180,7 +180,8 @@ std::vector<Footprint> MakeFootprints(const scene::Scene& scene, double margin_m
     for (int k = 0; k < 2; ++k) {
       const Eigen::Vector2d& a = k == 0 ? f.axis_x : f.axis_y;
       double h = 0.0;
-      for (int i = 0; i < 3; ++i) h += std::abs(Eigen::Vector2d(r.col(i).head<2>()).dot(a)) * half[i];
+      for (int i = 0; i < 3; ++i)
+        h += std::abs(Eigen::Vector2d(r.col(i).head<2>()).dot(a)) * half[i];
       f.half_mm[k] = h + margin_mm;
     }
     out.push_back(f);
@@ -293,7 +294,8 @@ std::vector<Region> BayRegions(const std::vector<Footprint>& fps, const Eigen::A
   std::vector<double> us = {box.min().x(), box.max().x()};
   std::vector<double> vs = {box.min().y(), box.max().y() + 1e-6};
   for (const Footprint& f : fps) {
-    const Eigen::Vector2d ext = f.axis_x.cwiseAbs() * f.half_mm.x() + f.axis_y.cwiseAbs() * f.half_mm.y();
+    const Eigen::Vector2d ext =
+        f.axis_x.cwiseAbs() * f.half_mm.x() + f.axis_y.cwiseAbs() * f.half_mm.y();
     for (double s : {-1.0, 1.0}) {
       const double u = f.centre.x() + s * ext.x();
       const double v = f.centre.y() + s * ext.y();
@@ -327,10 +329,9 @@ std::vector<Region> BayRegions(const std::vector<Footprint>& fps, const Eigen::A
 
 }  // namespace
 
-std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene,
-                                                const RasterOptions& o,
-                                                const program::Dialect& dialect,
-                                                std::ostream& out, DiagnosticSink& sink) {
+std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const RasterOptions& o,
+                                                const program::Dialect& dialect, std::ostream& out,
+                                                DiagnosticSink& sink) {
   using program::Axis;
   const SourceLocation where{scene.file.string(), 0, 0};
   const geom::Surface& surface = *scene.surface;
@@ -364,7 +365,17 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene,
     return std::nullopt;
   }
 
-  const std::vector<Footprint> fps = MakeFootprints(scene, o.margin_mm);
+  // The needles pierce beside the tool point: grow the footprints by their spread on the
+  // surface (through point plus the slant over the preform thickness).
+  double spread_mm = 0.0;
+  for (const scene::NeedleSpec& n : scene.head.needles) {
+    const double slant = std::abs(n.direction.z()) > 1e-9
+                             ? n.direction.head<2>().norm() / std::abs(n.direction.z())
+                             : 0.0;
+    spread_mm =
+        std::max(spread_mm, n.through_mm.head<2>().norm() + slant * scene.preform_thickness_mm);
+  }
+  const std::vector<Footprint> fps = MakeFootprints(scene, o.margin_mm + spread_mm);
   const RowStepper stepper(surface, o.pitch_mm);
   std::vector<Region> regions = o.strategy == RasterStrategy::kJump
                                     ? JumpRegions(fps, box, o.row_spacing_mm)
@@ -440,8 +451,8 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene,
   auto frame = [&](double u, double v, double dir) {
     const Eigen::Vector2d uv(u, v);
     const Eigen::Vector3d t = dir * surface.Jacobian(uv).col(0);
-    return geom::FrameFromNormalAndDirection(surface.Normal(uv), t).value_or(
-        Eigen::Matrix3d::Identity());
+    return geom::FrameFromNormalAndDirection(surface.Normal(uv), t)
+        .value_or(Eigen::Matrix3d::Identity());
   };
   auto emit_user = [&](UserCodeBlock::Event ev) {
     for (const UserCodeBlock& u : o.library.blocks) {
@@ -459,13 +470,15 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene,
     w.Write(b);
   };
 
-  double drive = 0.0;  // U = V: stitched length so far
+  double drive = 0.0;    // U = V: stitched length so far
+  double row_dir = 1.0;  // direction of the next row stitched (+u / -u)
   bool have_pos = false, stitching = false;
   Eigen::Vector3d pos = Eigen::Vector3d::Zero();
   bool feed_written = false;
   // Move to the start of a piece: needles out; retract if the straight path crosses a
   // footprint or `force_retract`.
-  auto transit = [&](const Eigen::Vector3d& to, const Eigen::Matrix3d& r, bool force_retract) {
+  auto transit = [&](const Eigen::Vector3d& to, const Eigen::Matrix3d& r, bool force_retract,
+                     double turn_sign) {
     bool crosses = force_retract;
     if (have_pos && !crosses) {
       for (const Footprint& f : fps) {
@@ -487,6 +500,22 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene,
       sum.traverse_s += kRetractLowerS;
     } else if (have_pos) {
       ++sum.turns;
+    }
+    // A half turn (the row direction reverses) in two quarter turns about the tool z axis,
+    // alternating sense, so the wrist unwinds instead of winding up and the interpolation
+    // between the end orientations is never ambiguous.
+    if (have_pos && geom::AngleBetween(angles_of, r) > 0.5 * 3.14159265358979323846) {
+      const Eigen::Matrix3d mid =
+          angles_of *
+          Eigen::AngleAxisd(0.5 * turn_sign * 3.14159265358979323846, Eigen::Vector3d::UnitZ())
+              .toRotationMatrix();
+      b.Clear();
+      b.motion = program::Motion::kRapid;
+      set_pose(b, pos, mid);
+      b[Axis::kDrive] = drive;
+      b[Axis::kPathLength] = drive;
+      w.Write(b);
+      ++sum.motion_lines;
     }
     b.Clear();
     b.motion = program::Motion::kRapid;
@@ -521,55 +550,74 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene,
       ++sum.bays;
       bool first_in_region = true;
       long prev_row = -1;
-      for (const RowPiece& piece : reg.pieces) {
-        const double dir = piece.row % 2 == 0 ? 1.0 : -1.0;
-        // Whole stitches from the piece's start end (the start end depends on direction).
-        const long n = stepper.Count(piece.u_begin, piece.u_end, piece.v, dir);
-        if (n == 0) continue;
-        double u = dir > 0 ? piece.u_begin : piece.u_end;
-        const Eigen::Matrix3d r = frame(u, piece.v, dir);
-        // Jump: pieces of one row are separated by a constraint; serpentine: new bay.
-        const bool force_retract =
-            (first_in_region && !first_in_head) || (prev_row == piece.row);
-        transit(surface.Point({u, piece.v}), r, force_retract);
-        first_in_head = false;
-        first_in_region = false;
-        if (prev_row != piece.row) {
-          ++sum.rows;
-          emit_user(UserCodeBlock::Event::kRowStart);
+      // Rows alternate direction in the order they are stitched; the pieces of a row are
+      // taken in its direction (a reversed row runs its pieces last to first).
+      for (std::size_t g = 0; g < reg.pieces.size();) {
+        std::size_t g_end = g;
+        while (g_end < reg.pieces.size() && reg.pieces[g_end].row == reg.pieces[g].row) ++g_end;
+        long stitchable = 0;
+        for (std::size_t k = g; k < g_end && stitchable == 0; ++k) {
+          stitchable =
+              stepper.Count(reg.pieces[k].u_begin, reg.pieces[k].u_end, reg.pieces[k].v, row_dir);
         }
-        prev_row = piece.row;
-        m_line({dialect.m.stitch_on});
-        stitching = true;
-        for (long k = 0; k < n; ++k) {
-          const double next = stepper.Next(u, piece.v, dir);
-          drive += o.pitch_mm;
-          const Eigen::Vector3d p = surface.Point({next, piece.v});
-          b.Clear();
-          b.motion = program::Motion::kFeed;
-          set_pose(b, p, frame(next, piece.v, dir));
-          b[Axis::kDrive] = drive;
-          b[Axis::kPathLength] = drive;
-          if (!feed_written) b.feed = feed_mm_min;
-          feed_written = true;
-          w.Write(b);
-          ++sum.motion_lines;
-          ++sum.stitches;
-          ++sum.head_stitches[static_cast<std::size_t>(head - 1)];
-          sum.stitching_s += stitch_time_s;
-          pos = p;
-          u = next;
-          for (const UserCodeBlock& ub : o.library.blocks) {
-            if (ub.event == UserCodeBlock::Event::kEveryStitches &&
-                sum.stitches % ub.every_stitches == 0) {
-              b.Clear();
-              b.m_codes = ub.m_codes;
-              b.param = ub.param;
-              w.Write(b);
-              ++sum.user_blocks;
+        if (stitchable == 0) {
+          g = g_end;
+          continue;
+        }
+        const double dir = row_dir;
+        row_dir = -row_dir;
+        for (std::size_t k = 0; k < g_end - g; ++k) {
+          const RowPiece& piece = reg.pieces[dir > 0 ? g + k : g_end - 1 - k];
+          // Whole stitches from the piece's start end (the start end depends on direction).
+          const long n = stepper.Count(piece.u_begin, piece.u_end, piece.v, dir);
+          if (n == 0) continue;
+          double u = dir > 0 ? piece.u_begin : piece.u_end;
+          const Eigen::Matrix3d r = frame(u, piece.v, dir);
+          // Jump: pieces of one row are separated by a constraint; serpentine: new bay.
+          const bool force_retract =
+              (o.strategy == RasterStrategy::kSerpentine && first_in_region && !first_in_head) ||
+              (prev_row == piece.row);
+          transit(surface.Point({u, piece.v}), r, force_retract, -dir);
+          first_in_head = false;
+          first_in_region = false;
+          if (prev_row != piece.row) {
+            ++sum.rows;
+            emit_user(UserCodeBlock::Event::kRowStart);
+          }
+          prev_row = piece.row;
+          m_line({dialect.m.stitch_on});
+          stitching = true;
+          for (long k = 0; k < n; ++k) {
+            const double next = stepper.Next(u, piece.v, dir);
+            drive += o.pitch_mm;
+            const Eigen::Vector3d p = surface.Point({next, piece.v});
+            b.Clear();
+            b.motion = program::Motion::kFeed;
+            set_pose(b, p, frame(next, piece.v, dir));
+            b[Axis::kDrive] = drive;
+            b[Axis::kPathLength] = drive;
+            if (!feed_written) b.feed = feed_mm_min;
+            feed_written = true;
+            w.Write(b);
+            ++sum.motion_lines;
+            ++sum.stitches;
+            ++sum.head_stitches[static_cast<std::size_t>(head - 1)];
+            sum.stitching_s += stitch_time_s;
+            pos = p;
+            u = next;
+            for (const UserCodeBlock& ub : o.library.blocks) {
+              if (ub.event == UserCodeBlock::Event::kEveryStitches &&
+                  sum.stitches % ub.every_stitches == 0) {
+                b.Clear();
+                b.m_codes = ub.m_codes;
+                b.param = ub.param;
+                w.Write(b);
+                ++sum.user_blocks;
+              }
             }
           }
         }
+        g = g_end;
       }
     }
   }

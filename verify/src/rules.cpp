@@ -474,6 +474,7 @@ class EmptyProgramRule final : public Rule {
 std::unique_ptr<Rule> MakeCollisionHeadMoldRule(const RuleContext& ctx);
 std::unique_ptr<Rule> MakeCollisionRobotCellRule(const RuleContext& ctx);
 std::unique_ptr<Rule> MakeCollisionClearanceRule(const RuleContext& ctx);
+std::unique_ptr<Rule> MakeConstraintCrossingRule(const RuleContext& ctx);  // constraint_rules.cpp
 
 std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   std::vector<std::unique_ptr<Rule>> rules;
@@ -497,6 +498,7 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   if (ctx.collision != nullptr) rules.push_back(MakeCollisionHeadMoldRule(ctx));
   if (ctx.collision != nullptr) rules.push_back(MakeCollisionRobotCellRule(ctx));
   if (ctx.collision != nullptr) rules.push_back(MakeCollisionClearanceRule(ctx));
+  if (!ctx.scene->constraints.empty()) rules.push_back(MakeConstraintCrossingRule(ctx));
   return rules;
 }
 

@@ -50,7 +50,7 @@ std::optional<UserCodeLibrary> LoadUserCodeLibrary(const std::filesystem::path& 
 /// oriented rectangle (conservative for boxes tilted out of the plane), grown by a margin.
 struct Footprint {
   std::string name;
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();  ///< part frame, mm
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();   ///< part frame, mm
   Eigen::Vector2d axis_x = Eigen::Vector2d::UnitX();  ///< unit
   Eigen::Vector2d axis_y = Eigen::Vector2d::UnitY();  ///< unit, perpendicular to axis_x
   Eigen::Vector2d half_mm = Eigen::Vector2d::Zero();  ///< half extents, margin included
@@ -65,11 +65,11 @@ std::vector<Footprint> MakeFootprints(const scene::Scene& scene, double margin_m
 
 struct RasterOptions {
   RasterStrategy strategy = RasterStrategy::kJump;
-  double pitch_mm = 2.54;        ///< stitch length along a row (0.1 in: 10 stitches/in)
-  double row_spacing_mm = 5.08;  ///< distance between rows (0.2 in)
-  double margin_mm = 2.54;       ///< kept clear around each constraint footprint
-  double edge_margin_mm = 0.0;   ///< kept clear inside the surface domain edges
-  int heads = 1;                 ///< heads the regions are split among
+  double pitch_mm = 2.54;           ///< stitch length along a row (0.1 in: 10 stitches/in)
+  double row_spacing_mm = 5.08;     ///< distance between rows (0.2 in)
+  double margin_mm = 2.54;          ///< kept clear around each constraint footprint
+  double edge_margin_mm = 0.0;      ///< kept clear inside the surface domain edges
+  int heads = 1;                    ///< heads the regions are split among
   std::vector<int> out_of_service;  ///< 1-based head numbers that get nothing
   /// Stitch only this (u, v) window (mm); default the whole surface domain.
   std::optional<Eigen::AlignedBox2d> region;
@@ -79,10 +79,10 @@ struct RasterOptions {
 /// What WriteRasterProgram wrote.
 struct RasterSummary {
   long stitches = 0;
-  long rows = 0;     ///< row pieces stitched (a row split by a jump counts once per piece)
-  long jumps = 0;    ///< retract - traverse - lower sequences
-  long bays = 0;     ///< regions (serpentine: bays; jump: rows)
-  long turns = 0;    ///< direction changes without retracting (serpentine inside a bay)
+  long rows = 0;   ///< row pieces stitched (a row split by a jump counts once per piece)
+  long jumps = 0;  ///< retract - traverse - lower sequences
+  long bays = 0;   ///< regions (serpentine: bays; jump: rows)
+  long turns = 0;  ///< direction changes without retracting (serpentine inside a bay)
   long user_blocks = 0;
   long motion_lines = 0;
   std::vector<long> head_stitches;  ///< per head (1-based index - 1), out of service = 0
@@ -96,7 +96,7 @@ struct RasterSummary {
 /// Diagnostics "plan-raster-..." for a bad option or surface; nullopt then.
 std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene,
                                                 const RasterOptions& options,
-                                                const program::Dialect& dialect,
-                                                std::ostream& out, DiagnosticSink& sink);
+                                                const program::Dialect& dialect, std::ostream& out,
+                                                DiagnosticSink& sink);
 
 }  // namespace stitchsim::planner
