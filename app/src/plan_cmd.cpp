@@ -36,18 +36,26 @@ struct PlanStitchArgs {
   std::string output;
 };
 
+// A scene whose head stitches (diagnostics printed); nullptr otherwise.
+std::unique_ptr<scene::Scene> LoadStitchingScene(const std::string& file) {
+  DiagnosticSink sink;
+  auto scene = scene::LoadScene(file, sink);
+  if (PrintDiagnostics(sink) || !scene) return nullptr;
+  if (!scene->head.IsStitching()) {
+    PrintError("plan-wrong-head",
+               file + ": head '" + scene->head.name +
+                   "' does not stitch; use `stitchsim plan afp` for fiber placement");
+    return nullptr;
+  }
+  return scene;
+}
+
 int RunPlanStitch(const PlanStitchArgs& a) {
   const std::optional<program::Dialect> dialect = DialectOption(a.dialect);
   if (!dialect) return kExitBadInput;
   DiagnosticSink sink;
-  auto scene = scene::LoadScene(a.scene, sink);
-  if (PrintDiagnostics(sink) || !scene) return kExitBadInput;
-  if (!scene->head.IsStitching()) {
-    PrintError("plan-wrong-head",
-               a.scene + ": head '" + scene->head.name +
-                   "' does not stitch; use `stitchsim plan afp` for fiber placement");
-    return kExitBadInput;
-  }
+  auto scene = LoadStitchingScene(a.scene);
+  if (!scene) return kExitBadInput;
   const scene::PathSpec* path = a.path.empty() ? &scene->paths.front() : scene->FindPath(a.path);
   if (path == nullptr) {
     std::string names;
@@ -311,12 +319,8 @@ int RunPlanRaster(const PlanRasterArgs& a) {
   const std::optional<program::Dialect> dialect = DialectOption(a.dialect);
   if (!dialect) return kExitBadInput;
   DiagnosticSink sink;
-  auto scene = scene::LoadScene(a.scene, sink);
-  if (PrintDiagnostics(sink) || !scene) return kExitBadInput;
-  if (!scene->head.IsStitching()) {
-    PrintError("plan-wrong-head", a.scene + ": head '" + scene->head.name + "' does not stitch");
-    return kExitBadInput;
-  }
+  auto scene = LoadStitchingScene(a.scene);
+  if (!scene) return kExitBadInput;
   constexpr double kInch = 25.4;
   planner::RasterOptions o;
   o.strategy = *planner::ParseRasterStrategy(a.strategy);
