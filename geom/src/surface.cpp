@@ -378,11 +378,10 @@ std::unique_ptr<Surface> MakeMeshSurface(TriangleMesh mesh) {
   return std::make_unique<MeshSurface>(std::move(mesh));
 }
 
-TriangleMesh TessellateSlab(const Surface& surface, const Domain2& domain, double off_bottom,
-                            double off_top, double chord_tol_mm) {
-  const Eigen::Vector2i cells = surface.TessellationCells(chord_tol_mm);
-  const int nu = cells.x();
-  const int nv = cells.y();
+namespace {
+
+TriangleMesh SlabCells(const Surface& surface, const Domain2& domain, double off_bottom,
+                       double off_top, int nu, int nv) {
   TriangleMesh m;
   auto grid_uv = [&](int i, int j) {
     return Eigen::Vector2d(domain.min.x() + (domain.max.x() - domain.min.x()) * i / nu,
@@ -422,6 +421,39 @@ TriangleMesh TessellateSlab(const Surface& surface, const Domain2& domain, doubl
     m.triangles.emplace_back(vid(0, a.x(), a.y()), vid(1, b.x(), b.y()), vid(1, a.x(), a.y()));
   }
   return m;
+}
+
+}  // namespace
+
+TriangleMesh TessellateSlab(const Surface& surface, const Domain2& domain, double off_bottom,
+                            double off_top, double chord_tol_mm) {
+  const Eigen::Vector2i cells = surface.TessellationCells(chord_tol_mm);
+  return SlabCells(surface, domain, off_bottom, off_top, cells.x(), cells.y());
+}
+
+std::vector<TriangleMesh> TessellateSlabTiles(const Surface& surface, const Domain2& domain,
+                                              double off_bottom, double off_top,
+                                              double chord_tol_mm, double max_tile_mm) {
+  const Eigen::Vector2i cells = surface.TessellationCells(chord_tol_mm);
+  const Eigen::Vector2d ext = domain.max - domain.min;
+  auto tiles_along = [&](double e) {
+    return std::clamp(static_cast<int>(std::ceil(e / std::max(max_tile_mm, 1e-3))), 1, 256);
+  };
+  const int tu = tiles_along(ext.x()), tv = tiles_along(ext.y());
+  const int cu = std::max(1, (cells.x() + tu - 1) / tu),
+            cv = std::max(1, (cells.y() + tv - 1) / tv);
+  std::vector<TriangleMesh> out;
+  out.reserve(static_cast<std::size_t>(tu * tv));
+  for (int i = 0; i < tu; ++i) {
+    for (int j = 0; j < tv; ++j) {
+      Domain2 d;
+      d.min = domain.min + ext.cwiseProduct(Eigen::Vector2d(double(i) / tu, double(j) / tv));
+      d.max =
+          domain.min + ext.cwiseProduct(Eigen::Vector2d(double(i + 1) / tu, double(j + 1) / tv));
+      out.push_back(SlabCells(surface, d, off_bottom, off_top, cu, cv));
+    }
+  }
+  return out;
 }
 
 }  // namespace stitchsim::geom

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "stitchsim/render/scene_model.h"
+
 namespace stitchsim::render {
 
 struct OffscreenRenderer::Impl {
@@ -49,6 +51,7 @@ std::unique_ptr<OffscreenRenderer> OffscreenRenderer::Create(mjModel* model, int
   model->vis.global.offwidth = width;
   model->vis.global.offheight = height;
   mjv_defaultOption(&im.opt);
+  im.opt.geomgroup[kHiddenGeomGroup] = 0;  // omitted cell fixtures
   mjv_defaultCamera(&im.cam);
   mjv_defaultScene(&im.scn);
   mjv_makeScene(model, &im.scn, 20000);

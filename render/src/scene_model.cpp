@@ -148,6 +148,14 @@ MjModelPtr LoadSceneModel(const scene::Scene& scene, DiagnosticSink& sink) {
                std::string("MuJoCo could not compile the scene model: ") + error);
     return nullptr;
   }
+  // cell.omit: the fixture's geoms go to group 5, which the renderer's default visual
+  // options (groups 0 to 2) never draw.
+  for (int g = 0; g < m->ngeom; ++g) {
+    int top = m->geom_bodyid[g];
+    while (top != 0 && m->body_parentid[top] != 0) top = m->body_parentid[top];
+    const char* n = top != 0 ? mj_id2name(m, mjOBJ_BODY, top) : nullptr;
+    if (n != nullptr && scene.OmitsMjcfBody(n)) m->geom_group[g] = kHiddenGeomGroup;
+  }
   return MjModelPtr(m);
 }
 

@@ -24,7 +24,7 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
   if (!r.ExpectMap(*root, "a head spec")) return std::nullopt;
   r.CheckKeys(*root,
               {"stitchsim_head", "name", "description", "kind", "tool_number", "mjcf", "tool_frame",
-               "needles", "stitch", "afp", "limits"},
+               "needles", "stitch", "afp", "envelope", "limits"},
               "head spec");
   HeadSpec h;
   h.file = file;
@@ -153,6 +153,23 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
     num("min_steering_radius_mm", h.afp.min_steering_radius_mm);
     num("layup_speed_mm_s", h.afp.layup_speed_mm_s);
     num("rapid_speed_mm_s", h.afp.rapid_speed_mm_s);
+  }
+  if (auto env = r.Child(*root, "envelope", false); env && r.ExpectMap(*env, "envelope")) {
+    r.CheckKeys(*env, {"height_mm", "radius_mm"}, "envelope");
+    HeadEnvelope e;
+    bool ok = true;
+    for (auto [key, out] : {std::pair<const char*, double*>{"height_mm", &e.height_mm},
+                            std::pair<const char*, double*>{"radius_mm", &e.radius_mm}}) {
+      ok = false;
+      if (auto n = r.Child(*env, key, true)) {
+        if (auto v = r.Number(*n, key); v && r.Positive(*n, *v, key)) {
+          *out = *v;
+          ok = true;
+        }
+      }
+      if (!ok) break;
+    }
+    if (ok) h.envelope = e;
   }
   if (auto lim = r.Child(*root, "limits", false); lim && r.ExpectMap(*lim, "limits")) {
     for (const auto& rule : *lim) {

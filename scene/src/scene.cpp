@@ -1,5 +1,6 @@
 #include "stitchsim/scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -47,13 +48,14 @@ class SceneLoader {
     scene->cell_urdf = DataDir() / "models" / "isaac_cell.urdf";
     scene->cell_mjcf = DataDir() / "models" / "isaac_cell.xml";
     if (auto n = r_.Child(*root, "cell", false); n && r_.ExpectMap(*n, "cell")) {
-      r_.CheckKeys(*n, {"urdf", "mjcf"}, "cell");
-      if (auto u = r_.Child(*n, "urdf", true)) {
+      r_.CheckKeys(*n, {"urdf", "mjcf", "omit"}, "cell");
+      if (auto u = r_.Child(*n, "urdf", false)) {
         if (auto s = r_.String(*u, "cell.urdf")) scene->cell_urdf = RequireFile(*u, dir / *s);
       }
-      if (auto m = r_.Child(*n, "mjcf", true)) {
+      if (auto m = r_.Child(*n, "mjcf", false)) {
         if (auto s = r_.String(*m, "cell.mjcf")) scene->cell_mjcf = RequireFile(*m, dir / *s);
       }
+      if (auto o = r_.Child(*n, "omit", false)) ReadOmit(*o, *scene);
     }
     if (auto n = r_.Child(*root, "head", true)) {
       if (auto s = r_.String(*n, "head")) {
@@ -491,6 +493,27 @@ class SceneLoader {
     }
   }
 
+  void ReadOmit(const YAML::Node& node, Scene& scene) {
+    if (!node.IsSequence()) {
+      r_.Error(node, "type", "cell.omit must be a list of fixtures (table, rotator)");
+      return;
+    }
+    for (const auto& item : node) {
+      auto s = r_.String(item, "cell.omit item");
+      if (!s) continue;
+      bool known = false;
+      for (const auto& f : kCellFixtures) known = known || *s == f.name;
+      if (!known) {
+        r_.Error(item, "bad-value", "cell.omit: unknown fixture '" + *s + "' (table, rotator)");
+      } else if (std::find(scene.omitted_fixtures.begin(), scene.omitted_fixtures.end(), *s) !=
+                 scene.omitted_fixtures.end()) {
+        r_.Error(item, "duplicate-name", "cell.omit names '" + *s + "' twice");
+      } else {
+        scene.omitted_fixtures.push_back(*s);
+      }
+    }
+  }
+
   void ReadRail(const YAML::Node& root, Scene& scene) {
     auto rail = r_.Child(root, "rail", false);
     if (!rail || !r_.ExpectMap(*rail, "rail")) return;
@@ -504,6 +527,16 @@ class SceneLoader {
 };
 
 }  // namespace
+
+bool Scene::OmitsMjcfBody(const std::string& body) const {
+  for (const auto& f : kCellFixtures) {
+    if (body == f.mjcf_body && std::find(omitted_fixtures.begin(), omitted_fixtures.end(),
+                                         f.name) != omitted_fixtures.end()) {
+      return true;
+    }
+  }
+  return false;
+}
 
 const PathSpec* Scene::FindPath(const std::string& path_name) const {
   for (const auto& p : paths) {

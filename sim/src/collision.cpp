@@ -6,6 +6,7 @@
 #include <fcl/fcl.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
@@ -19,6 +20,11 @@ namespace {
 
 using detail::MjcfShape;
 using Geometry = std::shared_ptr<fcl::CollisionGeometryd>;
+
+// Largest (u, v) extent of one mold or preform tile (mm).
+constexpr double kPartTileMm = 600.0;
+// Broad-phase margin: how far a robot body may move before its candidate list is rebuilt (m).
+constexpr double kNearMarginM = 0.2;
 
 enum class Group { kRobot, kCell, kPart };
 enum class PartKind { kNone, kMold, kPreform, kConstraint };
@@ -87,6 +93,51 @@ geom::TriangleMesh ScaledMesh(const geom::TriangleMesh& mm, double scale) {
   return out;
 }
 
+// An oriented box bounding a body at its current pose: its geometry's local bounding box
+// carried by the object's transform (tight for primitives and for part tiles, whose local
+// frame is the part frame).
+struct Obb {
+  Eigen::Vector3d c;
+  Eigen::Matrix3d r;
+  Eigen::Vector3d e;
+};
+
+Obb ObbOf(const fcl::CollisionObjectd& o) {
+  const auto& box = o.collisionGeometry()->aabb_local;
+  const fcl::Transform3d& t = o.getTransform();
+  return {t * (0.5 * (box.min_ + box.max_)), t.linear(), 0.5 * (box.max_ - box.min_)};
+}
+
+// A lower bound on the distance between two oriented boxes: the largest gap between their
+// projections on the 15 separating-axis candidates (projection never lengthens a distance).
+// 0 when they may touch.
+double ObbGapLowerBound(const Obb& a, const Obb& b) {
+  // In a's frame: b's axes are the columns of r, its centre is at t.
+  const Eigen::Matrix3d r = a.r.transpose() * b.r;
+  const Eigen::Vector3d t = a.r.transpose() * (b.c - a.c);
+  const Eigen::Matrix3d abs_r = r.cwiseAbs();
+  double gap = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    gap = std::max(gap, std::abs(t[i]) - a.e[i] - b.e.dot(abs_r.row(i)));
+  }
+  for (int j = 0; j < 3; ++j) {
+    gap = std::max(gap, std::abs(t.dot(r.col(j))) - a.e.dot(abs_r.col(j)) - b.e[j]);
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double len2 = 1.0 - r(i, j) * r(i, j);  // |a_i x b_j|^2
+      if (len2 < 1e-12) continue;
+      const double sep = std::abs(t[i2] * r(i1, j) - t[i1] * r(i2, j)) -
+                         (a.e[i1] * abs_r(i2, j) + a.e[i2] * abs_r(i1, j)) -
+                         (b.e[j1] * abs_r(i, j2) + b.e[j2] * abs_r(i, j1));
+      gap = std::max(gap, sep / std::sqrt(len2));
+    }
+  }
+  return gap;
+}
+
 // A closed box as a mesh (for the support probe).
 geom::TriangleMesh BoxMesh(double h) {
   geom::TriangleMesh m;
@@ -151,10 +202,15 @@ class FclWorld final : public CollisionWorld {
     FclWorld* world;
     CollisionResult* result;
   };
+  struct Candidate {
+    double bound;  // lower bound on the pair's distance (m)
+    int i, j;
+  };
   struct DistanceData {
     FclWorld* world;
     CollisionResult* result;
     double best;
+    std::vector<Candidate> candidates;
     int a = -1, b = -1;
   };
   static bool CollideCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data);
@@ -176,8 +232,27 @@ class FclWorld final : public CollisionWorld {
   std::vector<Body> bodies_;
   int n_ = 0;
   std::vector<bool> pair_checked_;
-  fcl::DynamicAABBTreeCollisionManagerd robot_manager_, env_manager_;
-  bool env_moves_ = false;  // the rotator carries bodies
+  // Broad phase. The environment is static but for what the rotator carries; the robot
+  // moves a little between queries. Each robot body keeps the fixed environment bodies whose
+  // boxes were within (cutoff + kNearMarginM) of its box when the list was made at q_ref;
+  // while its motion bound since q_ref (MaxPointTravel's coefficients for its rigid group)
+  // stays under the margin / sqrt(3), no other fixed body can come within the cutoff, so the
+  // list is all the candidates there are. Rotator-carried bodies are always candidates;
+  // robot-robot pairs are tested pair by pair.
+  struct NearSet {
+    std::vector<int> env;
+    JointVector q_ref = JointVector::Zero();
+    double radius = -1.0;  // cutoff + margin the list was made for (< 0: none yet)
+  };
+  const std::vector<int>& NearEnv(std::size_t k, const JointVector& q, double cutoff);
+  std::vector<int> robot_bodies_;
+  std::vector<int> robot_group_;  // per robot_bodies_ entry: its travel_coeff_ index
+  std::vector<NearSet> near_;     // per robot_bodies_ entry
+  std::vector<int> fixed_env_, moving_env_;
+  std::vector<std::pair<int, int>> robot_self_pairs_;  // checked robot-robot pairs
+  bool placed_ = false;                                // fixed bodies have been placed
+  std::vector<Candidate> candidates_;                  // reused distance candidate list
+  std::pair<int, int> last_nearest_{-1, -1};           // nearest pair of the last distance query
   // MaxPointTravel: per robot rigid group, metres per unit of each joint's motion.
   std::vector<JointVector> travel_coeff_;
   double rotator_reach_m_ = 0.0;
@@ -189,7 +264,8 @@ class FclWorld final : public CollisionWorld {
     CollisionResult result;
   };
   std::vector<Cached> cache_;
-  std::size_t cache_next_ = 0;
+  std::size_t cache_next_ = 0;  // slot of the next entry (the oldest once full)
+  static constexpr std::size_t kCacheSize = 512;
 };
 
 int FclWorld::RigidOf(int link) const {
@@ -212,6 +288,7 @@ bool FclWorld::Build(const scene::Scene& scene, DiagnosticSink& sink) {
   const bool afp = scene.head.kind == scene::HeadKind::kAfp;
   const int rotator = robot_.rotator_link();
   for (const auto& g : geoms) {
+    if (!g.in_head && scene.OmitsMjcfBody(g.top_body)) continue;  // cell.omit
     Body b;
     b.link = robot_.LinkIndex(g.link);
     if (b.link < 0) b.link = 0;
@@ -266,12 +343,16 @@ bool FclWorld::Build(const scene::Scene& scene, DiagnosticSink& sink) {
     b.geometry = MakeMesh(*b.mesh_m);
     AddBody(std::move(b));
   };
-  add_part("mold", PartKind::kMold,
-           geom::TessellateSlab(s, s.Domain(), -scene.mold_depth_mm, 0.0, tol_mm),
-           Eigen::Isometry3d::Identity());
-  add_part("preform", PartKind::kPreform,
-           geom::TessellateSlab(s, s.Domain(), 0.0, scene.preform_thickness_mm, tol_mm),
-           Eigen::Isometry3d::Identity());
+  // Tiles of at most kPartTileMm, so the broad phase drops the far parts of a large part
+  // (one mesh over a wing cover would put every head geom inside its bounding box).
+  for (auto& tile :
+       geom::TessellateSlabTiles(s, s.Domain(), -scene.mold_depth_mm, 0.0, tol_mm, kPartTileMm)) {
+    add_part("mold", PartKind::kMold, std::move(tile), Eigen::Isometry3d::Identity());
+  }
+  for (auto& tile : geom::TessellateSlabTiles(s, s.Domain(), 0.0, scene.preform_thickness_mm,
+                                              tol_mm, kPartTileMm)) {
+    add_part("preform", PartKind::kPreform, std::move(tile), Eigen::Isometry3d::Identity());
+  }
   for (const auto& c : scene.constraints) {
     if (c.shape == scene::Constraint::Shape::kMesh) {
       add_part("constraint:" + c.name, PartKind::kConstraint, c.mesh,
@@ -352,15 +433,20 @@ bool FclWorld::Build(const scene::Scene& scene, DiagnosticSink& sink) {
     b.object = std::make_unique<fcl::CollisionObjectd>(b.geometry, fcl::Transform3d::Identity());
     b.object->setUserData(reinterpret_cast<void*>(static_cast<std::intptr_t>(i)));
     if (b.group == Group::kRobot) {
-      robot_manager_.registerObject(b.object.get());
+      robot_bodies_.push_back(i);
     } else {
-      env_manager_.registerObject(b.object.get());
-      env_moves_ = env_moves_ || b.moves;
+      (b.moves ? moving_env_ : fixed_env_).push_back(i);
+    }
+  }
+  for (std::size_t a = 0; a < robot_bodies_.size(); ++a) {
+    for (std::size_t c = a + 1; c < robot_bodies_.size(); ++c) {
+      if (Checked(robot_bodies_[a], robot_bodies_[c])) {
+        robot_self_pairs_.emplace_back(robot_bodies_[a], robot_bodies_[c]);
+      }
     }
   }
   Place(HomeJoints(robot_, 0.0));
-  robot_manager_.setup();
-  env_manager_.setup();
+  near_.assign(robot_bodies_.size(), NearSet{});
 
   // MaxPointTravel coefficients: for each robot rigid group, the reach from each joint it
   // hangs on to its farthest point (chain of link offsets + bounding sphere), q-independent.
@@ -396,6 +482,11 @@ bool FclWorld::Build(const scene::Scene& scene, DiagnosticSink& sink) {
     }
     travel_coeff_.push_back(coeff);
   }
+  for (int i : robot_bodies_) {
+    const int link = bodies_[static_cast<std::size_t>(i)].link;
+    robot_group_.push_back(
+        static_cast<int>(std::find(groups.begin(), groups.end(), link) - groups.begin()));
+  }
   for (const Body& b : bodies_) {
     if (b.group == Group::kRobot || !b.moves) continue;
     const auto& box = b.geometry->aabb_local;
@@ -416,17 +507,22 @@ void FclWorld::Place(const JointVector& q) {
   ForwardKinematics(robot_, q, frames_);
   const Eigen::Isometry3d part = PartPoseWorld(cell_, q[kRotator]);
   for (Body& b : bodies_) {
+    if (placed_ && !b.moves) continue;  // fixed bodies keep their first placement
     const Eigen::Isometry3d frame =
         b.group == Group::kPart ? part : frames_.world_pose[static_cast<std::size_t>(b.link)];
     b.object->setTransform(ToFcl(frame * b.local));
     b.object->computeAABB();
   }
+  placed_ = true;
 }
 
 bool FclWorld::CollideCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data) {
   auto* d = static_cast<CollideData*>(data);
   const int i = d->world->IndexOf(o1), j = d->world->IndexOf(o2);
-  if (d->world->Checked(i, j)) d->world->CheckPair(i, j, *d->result);
+  // Overlapping world boxes of tilted or large bodies often have separated oriented boxes.
+  if (d->world->Checked(i, j) && ObbGapLowerBound(ObbOf(*o1), ObbOf(*o2)) <= 0.0) {
+    d->world->CheckPair(i, j, *d->result);
+  }
   return false;
 }
 
@@ -451,32 +547,43 @@ void FclWorld::CheckPair(int i, int j, CollisionResult& result) const {
 
 bool FclWorld::DistanceCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data,
                                 double& dist) {
+  // Only gathers the candidates (pairs whose world boxes are closer than the cutoff) with a
+  // lower bound on their distance; Check measures them nearest-bound first.
   auto* d = static_cast<DistanceData*>(data);
   const int i = d->world->IndexOf(o1), j = d->world->IndexOf(o2);
   if (d->world->Checked(i, j)) {
-    fcl::DistanceRequestd req;
-    fcl::DistanceResultd res;
-    fcl::distance(o1, o2, req, res);
-    if (!std::isfinite(res.min_distance)) {
-      d->result->error = "FCL distance query failed for " +
-                         d->world->bodies_[static_cast<std::size_t>(i)].name + "|" +
-                         d->world->bodies_[static_cast<std::size_t>(j)].name;
-      return true;
-    }
-    const double v = std::max(0.0, res.min_distance);
-    if (v < d->best) {
-      d->best = v;
-      d->a = i;
-      d->b = j;
-    }
+    const double lb = ObbGapLowerBound(ObbOf(*o1), ObbOf(*o2));
+    if (lb < d->best) d->candidates.push_back({lb, i, j});
   }
   dist = std::min(dist, d->best);
-  return d->best <= 0.0;
+  return false;
+}
+
+const std::vector<int>& FclWorld::NearEnv(std::size_t k, const JointVector& q, double cutoff) {
+  NearSet& n = near_[k];
+  if (n.radius >= cutoff) {
+    const double travel =
+        travel_coeff_[static_cast<std::size_t>(robot_group_[k])].dot((q - n.q_ref).cwiseAbs());
+    if (std::sqrt(3.0) * travel < n.radius - cutoff) return n.env;
+  }
+  n.env.clear();
+  n.q_ref = q;
+  n.radius = cutoff + kNearMarginM;
+  const fcl::AABBd& box = bodies_[static_cast<std::size_t>(robot_bodies_[k])].object->getAABB();
+  for (int e : fixed_env_) {
+    if (box.distance(bodies_[static_cast<std::size_t>(e)].object->getAABB()) < n.radius) {
+      n.env.push_back(e);
+    }
+  }
+  return n.env;
 }
 
 CollisionResult FclWorld::Check(const JointVector& q, const CollisionOptions& options) {
   if (options.naive_baseline) return CheckNaive(q, options);
-  for (const Cached& c : cache_) {
+  // Newest first: the rules ask about the sample just placed; the executor's look-ahead over
+  // a long line may have placed a few hundred samples since.
+  for (std::size_t n = 0; n < cache_.size(); ++n) {
+    const Cached& c = cache_[(cache_next_ + cache_.size() - 1 - n) % cache_.size()];
     if (c.q == q && c.clearance == options.compute_clearance &&
         c.cutoff == options.clearance_cutoff_m) {
       return c.result;
@@ -484,20 +591,96 @@ CollisionResult FclWorld::Check(const JointVector& q, const CollisionOptions& op
   }
   CollisionResult result;
   Place(q);
-  robot_manager_.update();
-  if (env_moves_) env_manager_.update();
+  auto object = [&](int i) { return bodies_[static_cast<std::size_t>(i)].object.get(); };
+  const double cutoff = std::max(options.clearance_cutoff_m, 0.0);
   CollideData cd{this, &result};
-  robot_manager_.collide(&env_manager_, &cd, &FclWorld::CollideCallback);
-  robot_manager_.collide(&cd, &FclWorld::CollideCallback);
+  for (std::size_t k = 0; k < robot_bodies_.size(); ++k) {
+    const int i = robot_bodies_[k];
+    const fcl::AABBd& box = object(i)->getAABB();
+    const std::vector<int>* near = &NearEnv(k, q, cutoff);
+    for (const std::vector<int>* list :
+         std::array<const std::vector<int>*, 2>{near, &moving_env_}) {
+      for (int e : *list) {
+        if (box.overlap(object(e)->getAABB())) CollideCallback(object(i), object(e), &cd);
+      }
+    }
+  }
+  for (const auto& [i, j] : robot_self_pairs_) {
+    if (object(i)->getAABB().overlap(object(j)->getAABB())) {
+      CollideCallback(object(i), object(j), &cd);
+    }
+  }
   if (options.compute_clearance) {
     if (!result.contacts.empty()) {
       result.min_clearance_m = 0.0;
       result.min_clearance_pair =
           result.contacts.front().body_a + "|" + result.contacts.front().body_b;
     } else {
-      DistanceData dd{this, &result, options.clearance_cutoff_m};
-      robot_manager_.distance(&env_manager_, &dd, &FclWorld::DistanceCallback);
-      robot_manager_.distance(&dd, &FclWorld::DistanceCallback);
+      DistanceData dd{this, &result, options.clearance_cutoff_m, {}};
+      dd.candidates.swap(candidates_);
+      dd.candidates.clear();
+      // Seed the best distance with the pair that was nearest at the previous query: its
+      // exact distance is a true clearance, and far fewer pairs then pass the bounds.
+      if (last_nearest_.first >= 0) {
+        fcl::DistanceRequestd req;
+        fcl::DistanceResultd res;
+        fcl::distance(object(last_nearest_.first), object(last_nearest_.second), req, res);
+        if (std::isfinite(res.min_distance) && res.min_distance < dd.best) {
+          dd.best = std::max(0.0, res.min_distance);
+          dd.a = last_nearest_.first;
+          dd.b = last_nearest_.second;
+        }
+      }
+      double unused = dd.best;
+      for (std::size_t k = 0; k < robot_bodies_.size(); ++k) {
+        const int i = robot_bodies_[k];
+        const fcl::AABBd& box = object(i)->getAABB();
+        const std::vector<int>* near = &near_[k].env;
+        for (const std::vector<int>* list :
+             std::array<const std::vector<int>*, 2>{near, &moving_env_}) {
+          for (int e : *list) {
+            if (box.distance(object(e)->getAABB()) < dd.best) {
+              DistanceCallback(object(i), object(e), &dd, unused);
+            }
+          }
+        }
+      }
+      for (const auto& [i, j] : robot_self_pairs_) {
+        if (object(i)->getAABB().distance(object(j)->getAABB()) < dd.best) {
+          DistanceCallback(object(i), object(j), &dd, unused);
+        }
+      }
+      // Exact distances nearest-bound first; a pair whose bound is no less than the best
+      // distance so far cannot lower it (the result equals measuring every candidate).
+      std::sort(dd.candidates.begin(), dd.candidates.end(),
+                [](const Candidate& x, const Candidate& y) { return x.bound < y.bound; });
+      const std::pair<int, int> seeded{dd.a, dd.b};
+      for (const Candidate& c : dd.candidates) {
+        if (c.bound >= dd.best) break;
+        if ((c.i == seeded.first && c.j == seeded.second) ||
+            (c.j == seeded.first && c.i == seeded.second)) {
+          continue;  // measured above
+        }
+        fcl::DistanceRequestd req;
+        fcl::DistanceResultd res;
+        fcl::distance(bodies_[static_cast<std::size_t>(c.i)].object.get(),
+                      bodies_[static_cast<std::size_t>(c.j)].object.get(), req, res);
+        if (!std::isfinite(res.min_distance)) {
+          result.error = "FCL distance query failed for " +
+                         bodies_[static_cast<std::size_t>(c.i)].name + "|" +
+                         bodies_[static_cast<std::size_t>(c.j)].name;
+          break;
+        }
+        const double v = std::max(0.0, res.min_distance);
+        if (v < dd.best) {
+          dd.best = v;
+          dd.a = c.i;
+          dd.b = c.j;
+        }
+        if (dd.best <= 0.0) break;
+      }
+      candidates_.swap(dd.candidates);
+      last_nearest_ = {dd.a, dd.b};
       result.min_clearance_m = dd.best;
       if (dd.a >= 0) {
         result.min_clearance_pair = bodies_[static_cast<std::size_t>(dd.a)].name + "|" +
@@ -506,11 +689,12 @@ CollisionResult FclWorld::Check(const JointVector& q, const CollisionOptions& op
     }
   }
   Cached entry{q, options.compute_clearance, options.clearance_cutoff_m, result};
-  if (cache_.size() < 64) {
+  if (cache_.size() < kCacheSize) {
     cache_.push_back(std::move(entry));
+    cache_next_ = cache_.size() % kCacheSize;
   } else {
     cache_[cache_next_] = std::move(entry);
-    cache_next_ = (cache_next_ + 1) % cache_.size();
+    cache_next_ = (cache_next_ + 1) % kCacheSize;
   }
   return result;
 }

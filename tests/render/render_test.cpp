@@ -117,5 +117,64 @@ TEST(SceneModel, ComposedModelCompilesForEveryHead) {
   }
 }
 
+// A head spec's envelope holds for its MJCF geometry: every geom reaching lower than
+// height_mm above the tool point lies within radius_mm of the tool z axis.
+TEST(SceneModel, HeadEnvelopeContainsTheLowGeometry) {
+  int heads = 0;
+  for (const char* head : {"rs535", "rs566", "afp"}) {
+    DiagnosticSink sink;
+    const auto spec =
+        scene::LoadHeadSpec(kSource / "models/heads" / (std::string(head) + ".yaml"), sink);
+    ASSERT_TRUE(spec) << head;
+    if (!spec->envelope) continue;
+    ++heads;
+    char error[512] = {0};
+    MjModelPtr m(mj_loadXML(spec->mjcf.string().c_str(), nullptr, error, sizeof(error)));
+    ASSERT_NE(m, nullptr) << error;
+    MjDataPtr d(mj_makeData(m.get()));
+    mj_kinematics(m.get(), d.get());
+    const Eigen::Isometry3d tool_inv = spec->flange_to_tool_m.inverse();
+    int low = 0;
+    for (int g = 0; g < m->ngeom; ++g) {
+      const Eigen::Vector3d c(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1],
+                              d->geom_xpos[3 * g + 2]);
+      Eigen::Matrix3d r;
+      for (int i = 0; i < 9; ++i) r(i / 3, i % 3) = d->geom_xmat[9 * g + i];
+      const Eigen::Vector3d sz(m->geom_size[3 * g], m->geom_size[3 * g + 1],
+                               m->geom_size[3 * g + 2]);
+      // Points whose hull bounds the geom, plus a radius to add around each.
+      std::vector<Eigen::Vector3d> pts;
+      double pad = 0.0;
+      if (m->geom_type[g] == mjGEOM_BOX) {
+        for (int k = 0; k < 8; ++k) {
+          pts.push_back(c + r * Eigen::Vector3d((k & 1) ? sz.x() : -sz.x(),
+                                                (k & 2) ? sz.y() : -sz.y(),
+                                                (k & 4) ? sz.z() : -sz.z()));
+        }
+      } else if (m->geom_type[g] == mjGEOM_CAPSULE || m->geom_type[g] == mjGEOM_CYLINDER) {
+        pts = {c + r * Eigen::Vector3d(0, 0, sz.y()), c - r * Eigen::Vector3d(0, 0, sz.y())};
+        pad = sz.x();
+      } else {
+        ASSERT_EQ(m->geom_type[g], mjGEOM_SPHERE) << head;
+        pts = {c};
+        pad = sz.x();
+      }
+      double lowest = 1e9, widest = 0.0;
+      for (const auto& p : pts) {
+        const Eigen::Vector3d t = tool_inv * p * 1000.0;  // tool frame, mm
+        lowest = std::min(lowest, t.z() - pad * 1000.0);
+        widest = std::max(widest, t.head<2>().norm() + pad * 1000.0);
+      }
+      if (lowest >= spec->envelope->height_mm - 1e-9) continue;
+      ++low;
+      EXPECT_LE(widest, spec->envelope->radius_mm)
+          << head << " geom " << mj_id2name(m.get(), mjOBJ_GEOM, g) << " reaches " << widest
+          << " mm from the tool axis at " << lowest << " mm above the tool point";
+    }
+    EXPECT_GE(low, 2) << head;  // the foot and the needles at least
+  }
+  EXPECT_GE(heads, 1);
+}
+
 }  // namespace
 }  // namespace stitchsim::render

@@ -177,6 +177,16 @@ INSTANTIATE_TEST_SUITE_P(
                    "preform: {thickness: .inf}\n"
                    "paths: [{name: a, type: line, from: [0, 0], to: [20, 0]}]\n",
                    "scene-not-finite", 7},
+        BrokenCase{"omit_unknown_fixture",
+                   "cell:\n  omit: [rotator, crane]\npart: {mount: table}\n"
+                   "surface: {type: plane, size: [100, 100]}\n"
+                   "paths: [{name: a, type: line, from: [0, 0], to: [20, 0]}]\n",
+                   "scene-bad-value", 6},
+        BrokenCase{"omit_not_a_list",
+                   "cell: {omit: table}\npart: {mount: rotator}\n"
+                   "surface: {type: plane, size: [100, 100]}\n"
+                   "paths: [{name: a, type: line, from: [0, 0], to: [20, 0]}]\n",
+                   "scene-type", 5},
         BrokenCase{"bad_surface_type",
                    "part: {mount: table}\nsurface: {type: torus}\n"
                    "paths: [{name: a, type: line, from: [0, 0], to: [20, 0]}]\n",

@@ -94,6 +94,9 @@ std::vector<MjcfGeom> LoadMjcfGeoms(const std::filesystem::path& cell_mjcf,
       b = m->body_parentid[b];
     }
     geom.link = b == 0 ? "world" : body_name(b);
+    for (int t = body; t != 0; t = m->body_parentid[t]) {
+      if (m->body_parentid[t] == 0) geom.top_body = body_name(t);
+    }
     geom.pose_in_link = pose;
     geom.size =
         Eigen::Vector3d(m->geom_size[3 * g], m->geom_size[3 * g + 1], m->geom_size[3 * g + 2]);

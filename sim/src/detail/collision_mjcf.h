@@ -19,6 +19,7 @@ struct MjcfGeom {
   std::string name;      ///< geom name ("geom_<id>" when unnamed)
   std::string body;      ///< MuJoCo body that carries it
   std::string link;      ///< URDF link whose frame `pose_in_link` is in ("world" for body 0)
+  std::string top_body;  ///< the world's child the geom hangs under ("" for world geoms)
   bool in_head = false;  ///< the geom comes from the head fragment
   MjcfShape shape = MjcfShape::kBox;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< MuJoCo geom_size (half extents, m)

@@ -78,4 +78,11 @@ std::unique_ptr<Surface> MakeMeshSurface(TriangleMesh mesh);
 TriangleMesh TessellateSlab(const Surface& surface, const Domain2& domain, double offset_bottom_mm,
                             double offset_top_mm, double chord_tol_mm);
 
+/// The same slab cut into closed tiles no larger than `max_tile_mm` in (u, v), each tessellated
+/// as finely as the whole slab would be. Collision checking uses tiles so that a broad phase
+/// can drop the far parts of a large part by their bounding boxes.
+std::vector<TriangleMesh> TessellateSlabTiles(const Surface& surface, const Domain2& domain,
+                                              double offset_bottom_mm, double offset_top_mm,
+                                              double chord_tol_mm, double max_tile_mm);
+
 }  // namespace stitchsim::geom

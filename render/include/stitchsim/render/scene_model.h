@@ -25,6 +25,8 @@ using MjDataPtr = std::unique_ptr<mjData, MjDataDeleter>;
 inline constexpr const char* kMoldGeom = "part_mold";
 inline constexpr const char* kPreformGeom = "part_preform";
 inline constexpr const char* kConstraintGeomPrefix = "constraint_";
+/// Geom group of omitted cell fixtures (scene `cell.omit`): never drawn.
+inline constexpr int kHiddenGeomGroup = 5;
 
 /// The MJCF text of the whole scene (cell + head + part).
 std::string ComposeSceneMjcf(const scene::Scene& scene, DiagnosticSink& sink);

@@ -48,6 +48,14 @@ struct AfpSpec {
 /// Rule id -> limit key (e.g. "error_mm") -> value. Units are in the key names.
 using RuleLimits = std::map<std::string, std::map<std::string, double>>;
 
+/// The head near the work, for planners' keep-out margins: every part of the head lower than
+/// `height_mm` above the tool point (along tool z) lies within `radius_mm` of the tool z axis.
+/// A test checks it against the head's MJCF geometry.
+struct HeadEnvelope {
+  double height_mm = 0.0;
+  double radius_mm = 0.0;
+};
+
 struct HeadSpec {
   std::filesystem::path file;
   std::string name;
@@ -59,6 +67,7 @@ struct HeadSpec {
   std::vector<NeedleSpec> needles;
   StitchProcessSpec stitch;
   AfpSpec afp;
+  std::optional<HeadEnvelope> envelope;  ///< absent: the head spec gives none
   RuleLimits limits;
   bool IsStitching() const { return kind != HeadKind::kAfp; }
 };

@@ -55,9 +55,23 @@ struct Scene {
   double nominal_stitch_length_mm = 5.0;
   RuleLimits limits;            ///< head defaults merged with the scene's overrides
   double rail_offset_mm = 0.0;  ///< rail policy: carriage x minus tool x (world), preferred
+  /// Cell fixtures absent from this set-up (`cell.omit`): their geometry is left out of
+  /// rendering and collision checks; their frames stay (kinematics unchanged).
+  std::vector<std::string> omitted_fixtures;
+
+  /// True when the top-level MJCF body `body` (a child of the world) belongs to an omitted
+  /// fixture.
+  bool OmitsMjcfBody(const std::string& body) const;
 
   const PathSpec* FindPath(const std::string& path_name) const;
 };
+
+/// The cell fixtures a scene may omit, and the top-level MJCF body of each.
+struct CellFixture {
+  const char* name;
+  const char* mjcf_body;
+};
+inline constexpr CellFixture kCellFixtures[] = {{"table", "table"}, {"rotator", "rotator_base"}};
 
 /// Loads and validates a scene. Every problem is a diagnostic with file:line:col and a
 /// stable code ("scene-..."); returns nullptr if any error was reported.
