@@ -1,10 +1,10 @@
-// The seed-001 wing cover at full size (about 1.9 million stitches): plan it with both
-// strategies (streamed to a file) and verify each programme in-process, reporting wall time,
+// The seed-001 wing cover at full size (1.66 million stitches with the scene's raster
+// defaults): plan it with both strategies (streamed to a file) and verify each programme
+// in-process as `stitchsim verify` does, every rule including the FCL collision rules (the
+// world also given to the executor for its between-samples guarantee), reporting wall time,
 // stitches/s and resident memory per step, for half and full span, so that memory that grew
-// with the programme would show. Rules run: every rule MakeRules gives without a collision
-// world (needle.*, stitch.*, kin.*, program.*, constraint.crossing); the kin.* rules report
-// the part of the chord this arm cannot reach (see docs/raster.md), the others must pass.
-// Usage: raster_bench [--plan-only] [--half-only]
+// with the programme would show. Every rule must pass.
+// Usage: raster_bench [--plan-only] [--half-only] [--no-collision]
 #include <sys/resource.h>
 
 #include <chrono>
@@ -15,6 +15,7 @@
 #include <string>
 
 #include "stitchsim/planner/raster_planner.h"
+#include "stitchsim/sim/collision.h"
 #include "stitchsim/sim/executor.h"
 #include "stitchsim/verify/verifier.h"
 
@@ -55,10 +56,11 @@ void Row(const char* step, const char* strategy, const char* size, long stitches
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool plan_only = false, half_only = false;
+  bool plan_only = false, half_only = false, collision = true;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--plan-only") == 0) plan_only = true;
     if (std::strcmp(argv[i], "--half-only") == 0) half_only = true;
+    if (std::strcmp(argv[i], "--no-collision") == 0) collision = false;
   }
   DiagnosticSink sink;
   auto scene =
@@ -69,13 +71,20 @@ int main(int argc, char** argv) {
   const fs::path dir = fs::temp_directory_path() / "stitchsim_raster_bench";
   fs::create_directories(dir);
   const program::Dialect& dialect = program::Dialect::Default();
-  std::printf("wing_cover: 480 x 96 in, pitch 0.1 in, rows 0.2 in; start peak RSS %.1f MiB\n",
-              static_cast<double>(PeakRssKb()) / 1024.0);
+  planner::RasterOptions defaults;
+  defaults.pitch_mm = scene->raster.pitch_mm.value_or(defaults.pitch_mm);
+  defaults.row_spacing_mm = scene->raster.row_spacing_mm.value_or(defaults.row_spacing_mm);
+  defaults.margin_mm = scene->raster.margin_mm.value_or(defaults.margin_mm);
+  std::printf(
+      "wing_cover: 480 x 96 in, pitch %.3f in, rows %.3f in, margin %.2f in, collision %s; "
+      "start peak RSS %.1f MiB\n",
+      defaults.pitch_mm / kInch, defaults.row_spacing_mm / kInch, defaults.margin_mm / kInch,
+      collision ? "on" : "off", static_cast<double>(PeakRssKb()) / 1024.0);
   for (const char* size : {"half", "full"}) {
     if (half_only && std::strcmp(size, "full") == 0) break;
     for (auto strategy : {planner::RasterStrategy::kJump, planner::RasterStrategy::kSerpentine}) {
       const std::string name(planner::ToString(strategy));
-      planner::RasterOptions o;
+      planner::RasterOptions o = defaults;
       o.strategy = strategy;
       if (std::strcmp(size, "half") == 0) {
         o.region =
@@ -96,11 +105,17 @@ int main(int argc, char** argv) {
       t0 = std::chrono::steady_clock::now();
       const sim::CellSetup cell = sim::MakeCellSetup(*robot, *scene);
       const process::ProcessModel model = process::MakeProcessModel(*scene, o.pitch_mm);
-      verify::RuleContext ctx{scene.get(), &*robot, &model};
+      std::unique_ptr<sim::CollisionWorld> world;
+      if (collision) {
+        world = sim::CollisionWorld::Create(*scene, *robot, sink);
+        if (!world) return 1;
+      }
+      verify::RuleContext ctx{scene.get(), &*robot, &model, world.get()};
       verify::Verifier verifier(ctx, false);
       std::ifstream in(file, std::ios::binary);
-      sim::ExecuteProgram(cell, model, dialect, in, file.string(), sim::ExecuteOptionsFor(*scene),
-                          sink, verifier);
+      sim::ExecuteOptions options = sim::ExecuteOptionsFor(*scene);
+      options.collision = world.get();
+      sim::ExecuteProgram(cell, model, dialect, in, file.string(), options, sink, verifier);
       verify::Report report;
       verifier.Finish(report);
       std::string errors;

@@ -308,9 +308,8 @@ struct PlanRasterArgs {
   int heads = 1;
   std::vector<int> out_of_service;
   std::string library;
-  double pitch_in = 0.1;
-  double row_spacing_in = 0.2;
-  double margin_in = 0.1;
+  // Unset: the scene's `raster:` value, else the built-in default.
+  std::optional<double> pitch_in, row_spacing_in, margin_in;
   std::vector<double> region_in;  // u_min v_min u_max v_max, inches
   std::string output;
 };
@@ -324,9 +323,13 @@ int RunPlanRaster(const PlanRasterArgs& a) {
   constexpr double kInch = 25.4;
   planner::RasterOptions o;
   o.strategy = *planner::ParseRasterStrategy(a.strategy);
-  o.pitch_mm = a.pitch_in * kInch;
-  o.row_spacing_mm = a.row_spacing_in * kInch;
-  o.margin_mm = a.margin_in * kInch;
+  auto pick = [&](const std::optional<double>& cli_in, const std::optional<double>& scene_mm,
+                  double fallback_mm) {
+    return cli_in ? *cli_in * kInch : scene_mm.value_or(fallback_mm);
+  };
+  o.pitch_mm = pick(a.pitch_in, scene->raster.pitch_mm, o.pitch_mm);
+  o.row_spacing_mm = pick(a.row_spacing_in, scene->raster.row_spacing_mm, o.row_spacing_mm);
+  o.margin_mm = pick(a.margin_in, scene->raster.margin_mm, o.margin_mm);
   o.heads = a.heads;
   o.out_of_service = a.out_of_service;
   if (a.region_in.size() == 4) {
@@ -372,9 +375,9 @@ int RunPlanRaster(const PlanRasterArgs& a) {
       "%s: raster %s, pitch %.4f in, rows %.4f in apart: %ld stitches, %ld rows, %ld jumps, "
       "%ld regions, %ld user blocks; per head: %s; estimated time %.1f s (stitching %.1f s, "
       "traverse %.1f s) -> %s\n",
-      scene->name.c_str(), a.strategy.c_str(), a.pitch_in, a.row_spacing_in, s->stitches, s->rows,
-      s->jumps, s->bays, s->user_blocks, heads.c_str(), s->TotalS(), s->stitching_s, s->traverse_s,
-      a.output.c_str());
+      scene->name.c_str(), a.strategy.c_str(), o.pitch_mm / kInch, o.row_spacing_mm / kInch,
+      s->stitches, s->rows, s->jumps, s->bays, s->user_blocks, heads.c_str(), s->TotalS(),
+      s->stitching_s, s->traverse_s, a.output.c_str());
   return kExitOk;
 }
 
@@ -434,11 +437,18 @@ void AddPlanCommand(CLI::App& app, int& exit_code) {
                    "Heads (1-based) that get nothing, comma separated")
       ->delimiter(',');
   ras_cmd->add_option("--library", ras->library, "User code library YAML (docs/raster.md)");
-  ras_cmd->add_option("--pitch", ras->pitch_in, "Stitch pitch along a row, inches (0.1)")
+  ras_cmd
+      ->add_option("--pitch", ras->pitch_in,
+                   "Stitch pitch along a row, inches (default: scene raster.pitch, else 0.1)")
       ->check(CLI::PositiveNumber);
-  ras_cmd->add_option("--row-spacing", ras->row_spacing_in, "Row spacing, inches (0.2)")
+  ras_cmd
+      ->add_option("--row-spacing", ras->row_spacing_in,
+                   "Row spacing, inches (default: scene raster.row_spacing, else 0.2)")
       ->check(CLI::PositiveNumber);
-  ras_cmd->add_option("--margin", ras->margin_in, "Clearance around constraints, inches (0.1)")
+  ras_cmd
+      ->add_option("--margin", ras->margin_in,
+                   "Clearance around constraints beyond the head's keep-out, inches (default: "
+                   "scene raster.margin, else 0.5)")
       ->check(CLI::NonNegativeNumber);
   ras_cmd
       ->add_option("--region", ras->region_in,

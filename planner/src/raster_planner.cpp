@@ -90,6 +90,28 @@ class RowStepper {
   double pitch_;
 };
 
+// Height of a constraint's top above the surface: the largest over its corners (box) or
+// vertices (mesh) of z minus the surface height at that (x, y), clamped into the domain.
+double HeightAboveSurface(const scene::Constraint& c, const geom::Surface& s) {
+  const geom::Domain2 dom = s.Domain();
+  auto above = [&](const Eigen::Vector3d& p) {
+    const Eigen::Vector2d uv = p.head<2>().cwiseMax(dom.min).cwiseMin(dom.max);
+    return p.z() - s.Point(uv).z();
+  };
+  double h = 0.0;
+  if (c.shape == scene::Constraint::Shape::kMesh) {
+    for (const auto& v : c.mesh.vertices) h = std::max(h, above(v));
+    return h;
+  }
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3d corner(((k & 1) ? 0.5 : -0.5) * c.size_mm.x(),
+                                 ((k & 2) ? 0.5 : -0.5) * c.size_mm.y(),
+                                 ((k & 4) ? 0.5 : -0.5) * c.size_mm.z());
+    h = std::max(h, above(c.pose_mm * corner));
+  }
+  return h;
+}
+
 std::string Num(double v) {
   char buf[32];
   std::snprintf(buf, sizeof(buf), "%.6f", v);
@@ -375,7 +397,28 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
     spread_mm =
         std::max(spread_mm, n.through_mm.head<2>().norm() + slant * scene.preform_thickness_mm);
   }
-  const std::vector<Footprint> fps = MakeFootprints(scene, o.margin_mm + spread_mm);
+  // The head beside the needles (presser foot, needle housing: the head spec's envelope)
+  // must stay clear of the constraints too, also while it turns in place at a row end.
+  const double keep_out_mm =
+      std::max(spread_mm, scene.head.envelope ? scene.head.envelope->radius_mm : 0.0);
+  const std::vector<Footprint> fps = MakeFootprints(scene, o.margin_mm + keep_out_mm);
+  // Constraint heights above the surface: what a retracted head must clear.
+  double tallest_mm = 0.0;
+  for (const scene::Constraint& c : scene.constraints) {
+    const double h = HeightAboveSurface(c, surface);
+    if (scene.head.envelope && h >= scene.head.envelope->height_mm) {
+      sink.Error("plan-raster-constraint-too-tall", c.where,
+                 "constraint '" + c.name + "' rises " + Num(h) +
+                     " mm above the surface, not below the head's envelope height (" +
+                     Num(scene.head.envelope->height_mm) +
+                     " mm): the stitching unit above it would hit it beside the stitches");
+      return std::nullopt;
+    }
+    tallest_mm = std::max(tallest_mm, h);
+  }
+  // A jump or a move between bays is flown this high above the surface (constraint tops plus
+  // the clearance the collision.clearance rule asks for, plus a safety allowance).
+  const double lift_clear_mm = tallest_mm + o.lift_clearance_mm;
   const RowStepper stepper(surface, o.pitch_mm);
   std::vector<Region> regions = o.strategy == RasterStrategy::kJump
                                     ? JumpRegions(fps, box, o.row_spacing_mm)
@@ -493,39 +536,59 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
       m_line({dialect.m.stitch_off});
       stitching = false;
     }
+    auto rapid = [&](const Eigen::Vector3d& p, const Eigen::Matrix3d& rot) {
+      b.Clear();
+      b.motion = program::Motion::kRapid;
+      set_pose(b, p, rot);
+      b[Axis::kDrive] = drive;
+      b[Axis::kPathLength] = drive;
+      w.Write(b);
+      ++sum.motion_lines;
+    };
+    // A half turn (the row direction reverses) in two quarter turns about the tool z axis,
+    // alternating sense, so the wrist unwinds instead of winding up and the interpolation
+    // between the end orientations is never ambiguous.
+    auto quarter_turn_at = [&](const Eigen::Vector3d& p) {
+      if (have_pos && geom::AngleBetween(angles_of, r) > 0.5 * 3.14159265358979323846) {
+        rapid(p, angles_of * Eigen::AngleAxisd(0.5 * turn_sign * 3.14159265358979323846,
+                                               Eigen::Vector3d::UnitZ())
+                                 .toRotationMatrix());
+      }
+    };
     if (retract) {
       emit_user(UserCodeBlock::Event::kBeforeJump);
       m_line({dialect.m.head_retract});
       ++sum.jumps;
       sum.traverse_s += kRetractLowerS;
-    } else if (have_pos) {
-      ++sum.turns;
+      // Up along the normals, across, down: high enough that the straight transit keeps
+      // `lift_clear_mm` over the surface all the way (a bay move may cross the crown).
+      const Eigen::Vector3d na = angles_of.col(2), nb = r.col(2);
+      double lift = lift_clear_mm;
+      for (int it = 0; it < 8; ++it) {
+        const Eigen::Vector3d a = pos + lift * na, c = to + lift * nb;
+        double deficit = 0.0;
+        const int n = std::max(2, static_cast<int>((c - a).norm() / 20.0) + 1);
+        for (int k = 0; k <= n; ++k) {
+          const Eigen::Vector3d p = a + (c - a) * (static_cast<double>(k) / n);
+          const Eigen::Vector2d uv = p.head<2>().cwiseMax(dom.min).cwiseMin(dom.max);
+          deficit = std::max(deficit, lift_clear_mm - (p.z() - surface.Point(uv).z()));
+        }
+        if (deficit <= 1e-6) break;
+        lift += deficit + 1.0;
+      }
+      const Eigen::Vector3d up = pos + lift * na, over = to + lift * nb;
+      rapid(up, angles_of);
+      quarter_turn_at(up);
+      rapid(over, r);
+      rapid(to, r);
+      sum.traverse_s += (2 * lift + (over - up).norm()) / kTraverseMmPerMin * 60.0;
+      m_line({dialect.m.head_lower});
+    } else {
+      if (have_pos) ++sum.turns;
+      quarter_turn_at(pos);
+      rapid(to, r);
+      if (have_pos) sum.traverse_s += (to - pos).norm() / kTraverseMmPerMin * 60.0;
     }
-    // A half turn (the row direction reverses) in two quarter turns about the tool z axis,
-    // alternating sense, so the wrist unwinds instead of winding up and the interpolation
-    // between the end orientations is never ambiguous.
-    if (have_pos && geom::AngleBetween(angles_of, r) > 0.5 * 3.14159265358979323846) {
-      const Eigen::Matrix3d mid =
-          angles_of *
-          Eigen::AngleAxisd(0.5 * turn_sign * 3.14159265358979323846, Eigen::Vector3d::UnitZ())
-              .toRotationMatrix();
-      b.Clear();
-      b.motion = program::Motion::kRapid;
-      set_pose(b, pos, mid);
-      b[Axis::kDrive] = drive;
-      b[Axis::kPathLength] = drive;
-      w.Write(b);
-      ++sum.motion_lines;
-    }
-    b.Clear();
-    b.motion = program::Motion::kRapid;
-    set_pose(b, to, r);
-    b[Axis::kDrive] = drive;
-    b[Axis::kPathLength] = drive;
-    w.Write(b);
-    ++sum.motion_lines;
-    if (have_pos) sum.traverse_s += (to - pos).norm() / kTraverseMmPerMin * 60.0;
-    if (retract) m_line({dialect.m.head_lower});
     pos = to;
     have_pos = true;
   };

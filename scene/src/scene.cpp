@@ -24,10 +24,11 @@ class SceneLoader {
     auto root = r_.LoadFile();
     if (!root) return nullptr;
     if (!r_.ExpectMap(*root, "a scene")) return nullptr;
-    r_.CheckKeys(*root,
-                 {"stitchsim_scene", "name", "description", "units", "head", "cell", "part",
-                  "surface", "preform", "mold", "stitch", "constraints", "paths", "limits", "rail"},
-                 "scene");
+    r_.CheckKeys(
+        *root,
+        {"stitchsim_scene", "name", "description", "units", "head", "cell", "part", "surface",
+         "preform", "mold", "stitch", "constraints", "paths", "limits", "rail", "raster"},
+        "scene");
     auto scene = std::make_unique<Scene>();
     scene->file = r_.File();
     const auto dir = r_.File().parent_path();
@@ -80,6 +81,7 @@ class SceneLoader {
     ReadPaths(*root, *scene);
     ReadLimits(*root, *scene);
     ReadRail(*root, *scene);
+    ReadRaster(*root, *scene);
     if (sink_.ErrorCount() > errors_before) return nullptr;
     return scene;
   }
@@ -512,6 +514,15 @@ class SceneLoader {
         scene.omitted_fixtures.push_back(*s);
       }
     }
+  }
+
+  void ReadRaster(const YAML::Node& root, Scene& scene) {
+    auto n = r_.Child(root, "raster", false);
+    if (!n || !r_.ExpectMap(*n, "raster")) return;
+    r_.CheckKeys(*n, {"pitch", "row_spacing", "margin"}, "raster");
+    scene.raster.pitch_mm = LengthKey(*n, "pitch", false, true);
+    scene.raster.row_spacing_mm = LengthKey(*n, "row_spacing", false, true);
+    scene.raster.margin_mm = LengthKey(*n, "margin", false, false);
   }
 
   void ReadRail(const YAML::Node& root, Scene& scene) {

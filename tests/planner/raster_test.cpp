@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "stitchsim/planner/raster_planner.h"
+#include "stitchsim/sim/collision.h"
 #include "stitchsim/sim/executor.h"
 #include "stitchsim/verify/verifier.h"
 
@@ -25,12 +26,16 @@ std::unique_ptr<scene::Scene> Wing() {
   return s;
 }
 
-// A window around the crossing of intercostal_3 (x = -40 in) and stringer_2 (y = -15 in).
-RasterOptions SmallWindow(RasterStrategy strategy) {
+// A window around the crossing of intercostal_3 (x = -40 in) and stringer_2 (y = -15 in),
+// with the scene's raster defaults.
+RasterOptions SmallWindow(const scene::Scene& s, RasterStrategy strategy) {
   RasterOptions o;
   o.strategy = strategy;
+  o.pitch_mm = s.raster.pitch_mm.value_or(o.pitch_mm);
+  o.row_spacing_mm = s.raster.row_spacing_mm.value_or(o.row_spacing_mm);
+  o.margin_mm = s.raster.margin_mm.value_or(o.margin_mm);
   o.region =
-      Eigen::AlignedBox2d(Eigen::Vector2d(-44, -19) * kInch, Eigen::Vector2d(-36, -11) * kInch);
+      Eigen::AlignedBox2d(Eigen::Vector2d(-46, -21) * kInch, Eigen::Vector2d(-34, -9) * kInch);
   return o;
 }
 
@@ -50,11 +55,17 @@ verify::Report VerifyText(const scene::Scene& s, const std::string& text, double
   EXPECT_TRUE(robot.has_value());
   const sim::CellSetup cell = sim::MakeCellSetup(*robot, s);
   const process::ProcessModel model = process::MakeProcessModel(s, pitch_mm);
-  verify::RuleContext ctx{&s, &*robot, &model};
+  // With the collision world: the head must clear the stringers and intercostals beside the
+  // rows, while turning at a bay edge and while flying a jump.
+  auto world = sim::CollisionWorld::Create(s, *robot, sink);
+  EXPECT_NE(world, nullptr);
+  verify::RuleContext ctx{&s, &*robot, &model, world.get()};
   verify::Verifier verifier(ctx, false);
   std::istringstream in(text);
-  sim::ExecuteProgram(cell, model, program::Dialect::Default(), in, "raster.nc",
-                      sim::ExecuteOptionsFor(s), sink, verifier);
+  sim::ExecuteOptions options = sim::ExecuteOptionsFor(s);
+  options.collision = world.get();
+  sim::ExecuteProgram(cell, model, program::Dialect::Default(), in, "raster.nc", options, sink,
+                      verifier);
   EXPECT_EQ(sink.ErrorCount(), 0u);
   verify::Report report;
   verifier.Finish(report);
@@ -92,7 +103,7 @@ TEST(Footprint, RowIntervalAndCrossingAgree) {
 TEST(RasterPlanner, WingWindowVerifiesCleanWithBothStrategies) {
   const auto s = Wing();
   for (RasterStrategy strategy : {RasterStrategy::kJump, RasterStrategy::kSerpentine}) {
-    const RasterOptions o = SmallWindow(strategy);
+    const RasterOptions o = SmallWindow(*s, strategy);
     RasterSummary sum;
     const std::string text = Plan(*s, o, &sum);
     EXPECT_GT(sum.stitches, 1000) << ToString(strategy);
@@ -107,13 +118,21 @@ TEST(RasterPlanner, WingWindowVerifiesCleanWithBothStrategies) {
     EXPECT_GT(crossing->checked, 0);
     EXPECT_EQ(crossing->errors, 0) << ToString(strategy);
     EXPECT_EQ(r.verdict, "pass") << ToString(strategy) << "\n" << Errors(r);
+    // No warnings either (clearance to the stringers included).
+    for (const auto& rule : r.rules) {
+      EXPECT_EQ(rule.warnings, 0) << ToString(strategy) << " " << rule.id << ": "
+                                  << (rule.findings.empty() ? "" : rule.findings[0].message);
+    }
+    // Jumps fly over the constraints: every M20 is followed by a lift away from the surface.
+    EXPECT_NE(text.find("M20\nG0"), std::string::npos) << ToString(strategy);
   }
 }
 
 TEST(RasterPlanner, WholeWingHasOverOnePointFiveMillionStitches) {
   // Counted without writing text: the writer to a discarding stream.
   const auto s = Wing();
-  RasterOptions o;
+  RasterOptions o = SmallWindow(*s, RasterStrategy::kJump);
+  o.region.reset();
   o.heads = 1;
   DiagnosticSink sink;
   std::ostream null(nullptr);
@@ -145,7 +164,7 @@ TEST(RasterPlanner, TwoHeadsSplitWithinTenPercent) {
 
 TEST(RasterPlanner, HeadOutOfServiceGetsNothing) {
   const auto s = Wing();
-  RasterOptions o = SmallWindow(RasterStrategy::kJump);
+  RasterOptions o = SmallWindow(*s, RasterStrategy::kJump);
   RasterSummary one;
   Plan(*s, o, &one);
   o.heads = 2;
@@ -174,7 +193,7 @@ TEST(RasterPlanner, UserCodeLibraryBlocksAtTheirEvents) {
       "  - {name: before_jump, at: before_jump, m: [112]}\n",
       "lib.yaml", program::Dialect::Default(), sink);
   ASSERT_TRUE(lib.has_value());
-  RasterOptions o = SmallWindow(RasterStrategy::kJump);
+  RasterOptions o = SmallWindow(*s, RasterStrategy::kJump);
   o.library = *lib;
   RasterSummary sum;
   const std::string text = Plan(*s, o, &sum);

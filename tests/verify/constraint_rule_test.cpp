@@ -32,7 +32,7 @@ Fixture Load() {
   f.robot = sim::LoadRobotModel(f.scene->cell_urdf, sink);
   EXPECT_TRUE(f.robot.has_value());
   f.options.region =
-      Eigen::AlignedBox2d(Eigen::Vector2d(-42, -17) * kInch, Eigen::Vector2d(-38, -13) * kInch);
+      Eigen::AlignedBox2d(Eigen::Vector2d(-46, -21) * kInch, Eigen::Vector2d(-34, -9) * kInch);
   return f;
 }
 
@@ -122,8 +122,9 @@ TEST(ConstraintCrossing, StitchMovedOntoStringerCaughtOnItsLine) {
 TEST(ConstraintCrossing, TraverseAcrossIntercostalWithoutRetractCaughtOnItsLine) {
   const Fixture f = Load();
   std::vector<std::string> lines = Lines(Plan(f, planner::RasterStrategy::kJump));
-  // The first jump: M11, M20, G0 across the intercostal, M21, M10. Drop M11 / M20 / M21 so
-  // the head traverses with the needles down.
+  // The first jump: M11, M20, G0 up, G0 over the intercostal, G0 down, M21, M10. Keep only
+  // the last G0 (to the landing point on the surface): the head traverses straight across
+  // the intercostal with the needles down.
   std::size_t m20 = 0;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     if (lines[i] == "M20") {
@@ -133,12 +134,12 @@ TEST(ConstraintCrossing, TraverseAcrossIntercostalWithoutRetractCaughtOnItsLine)
   }
   ASSERT_GT(m20, 1u);
   ASSERT_EQ(lines[m20 - 1], "M11");
-  ASSERT_EQ(lines[m20 + 1].rfind("G0", 0), 0u);
-  ASSERT_EQ(lines[m20 + 2], "M21");
-  lines.erase(lines.begin() + static_cast<long>(m20) + 2);
+  for (std::size_t k = 1; k <= 3; ++k) ASSERT_EQ(lines[m20 + k].rfind("G0", 0), 0u) << k;
+  ASSERT_EQ(lines[m20 + 4], "M21");
+  lines.erase(lines.begin() + static_cast<long>(m20) + 4);
   lines.erase(lines.begin() + static_cast<long>(m20) - 1,
-              lines.begin() + static_cast<long>(m20) + 1);
-  const int g0_line = static_cast<int>(m20) - 1 + 1;  // 1-based, after removing two lines
+              lines.begin() + static_cast<long>(m20) + 3);
+  const int g0_line = static_cast<int>(m20);  // 1-based: M11 .. G0 over removed
   ASSERT_EQ(lines[static_cast<std::size_t>(g0_line - 1)].rfind("G0", 0), 0u);
   const Report r = Check(f, Join(lines));
   const RuleSummary* c = Crossing(r);

@@ -65,9 +65,13 @@ std::vector<Footprint> MakeFootprints(const scene::Scene& scene, double margin_m
 
 struct RasterOptions {
   RasterStrategy strategy = RasterStrategy::kJump;
-  double pitch_mm = 2.54;           ///< stitch length along a row (0.1 in: 10 stitches/in)
-  double row_spacing_mm = 5.08;     ///< distance between rows (0.2 in)
-  double margin_mm = 2.54;          ///< kept clear around each constraint footprint
+  double pitch_mm = 2.54;        ///< stitch length along a row (0.1 in: 10 stitches/in)
+  double row_spacing_mm = 5.08;  ///< distance between rows (0.2 in)
+  /// Kept clear around each constraint footprint beyond the head's keep-out (the larger of
+  /// the needle spread and the head spec's envelope radius).
+  double margin_mm = 12.7;
+  /// A retracted head flies this much above the tallest constraint (mm).
+  double lift_clearance_mm = 20.0;
   double edge_margin_mm = 0.0;      ///< kept clear inside the surface domain edges
   int heads = 1;                    ///< heads the regions are split among
   std::vector<int> out_of_service;  ///< 1-based head numbers that get nothing

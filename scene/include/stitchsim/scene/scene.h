@@ -55,6 +55,10 @@ struct Scene {
   double nominal_stitch_length_mm = 5.0;
   RuleLimits limits;            ///< head defaults merged with the scene's overrides
   double rail_offset_mm = 0.0;  ///< rail policy: carriage x minus tool x (world), preferred
+  /// Raster stitching defaults (`raster:`), mm; the planner's options override them.
+  struct RasterDefaults {
+    std::optional<double> pitch_mm, row_spacing_mm, margin_mm;
+  } raster;
   /// Cell fixtures absent from this set-up (`cell.omit`): their geometry is left out of
   /// rendering and collision checks; their frames stay (kinematics unchanged).
   std::vector<std::string> omitted_fixtures;
