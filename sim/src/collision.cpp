@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "detail/collision_mjcf.h"
 #include "stitchsim/geom/surface.h"
@@ -108,10 +109,16 @@ Obb ObbOf(const fcl::CollisionObjectd& o) {
   return {t * (0.5 * (box.min_ + box.max_)), t.linear(), 0.5 * (box.max_ - box.min_)};
 }
 
+fcl::AABBd BoxOf(const Obb& o) {
+  const Eigen::Vector3d half = o.r.cwiseAbs() * o.e;
+  return fcl::AABBd(o.c - half, o.c + half);
+}
+
 // A lower bound on the distance between two oriented boxes: the largest gap between their
 // projections on the 15 separating-axis candidates (projection never lengthens a distance).
-// 0 when they may touch.
-double ObbGapLowerBound(const Obb& a, const Obb& b) {
+// 0 when they may touch. Stops early once an axis shows a gap of at least `enough`.
+double ObbGapLowerBound(const Obb& a, const Obb& b,
+                        double enough = std::numeric_limits<double>::infinity()) {
   // In a's frame: b's axes are the columns of r, its centre is at t.
   const Eigen::Matrix3d r = a.r.transpose() * b.r;
   const Eigen::Vector3d t = a.r.transpose() * (b.c - a.c);
@@ -120,9 +127,11 @@ double ObbGapLowerBound(const Obb& a, const Obb& b) {
   for (int i = 0; i < 3; ++i) {
     gap = std::max(gap, std::abs(t[i]) - a.e[i] - b.e.dot(abs_r.row(i)));
   }
+  if (gap >= enough) return gap;
   for (int j = 0; j < 3; ++j) {
     gap = std::max(gap, std::abs(t.dot(r.col(j))) - a.e.dot(abs_r.col(j)) - b.e[j]);
   }
+  if (gap >= enough) return gap;
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
@@ -249,6 +258,10 @@ class FclWorld final : public CollisionWorld {
   std::vector<int> robot_group_;  // per robot_bodies_ entry: its travel_coeff_ index
   std::vector<NearSet> near_;     // per robot_bodies_ entry
   std::vector<int> fixed_env_, moving_env_;
+  // Per body, at its current placement: oriented box, and the world box around it (FCL's
+  // own object box is the bounding sphere's box once a body is rotated: far too loose).
+  std::vector<Obb> obb_;
+  std::vector<fcl::AABBd> box_;
   std::vector<std::pair<int, int>> robot_self_pairs_;  // checked robot-robot pairs
   bool placed_ = false;                                // fixed bodies have been placed
   std::vector<Candidate> candidates_;                  // reused distance candidate list
@@ -447,6 +460,12 @@ bool FclWorld::Build(const scene::Scene& scene, DiagnosticSink& sink) {
   }
   Place(HomeJoints(robot_, 0.0));
   near_.assign(robot_bodies_.size(), NearSet{});
+  obb_.resize(static_cast<std::size_t>(n_));
+  box_.resize(static_cast<std::size_t>(n_));
+  for (int i = 0; i < n_; ++i)
+    box_[static_cast<std::size_t>(i)] = BoxOf(ObbOf(*bodies_[static_cast<std::size_t>(i)].object));
+  for (int i = 0; i < n_; ++i)
+    obb_[static_cast<std::size_t>(i)] = ObbOf(*bodies_[static_cast<std::size_t>(i)].object);
 
   // MaxPointTravel coefficients: for each robot rigid group, the reach from each joint it
   // hangs on to its farthest point (chain of link offsets + bounding sphere), q-independent.
@@ -512,6 +531,11 @@ void FclWorld::Place(const JointVector& q) {
         b.group == Group::kPart ? part : frames_.world_pose[static_cast<std::size_t>(b.link)];
     b.object->setTransform(ToFcl(frame * b.local));
     b.object->computeAABB();
+    if (!obb_.empty()) {
+      const std::size_t i = static_cast<std::size_t>(&b - bodies_.data());
+      obb_[i] = ObbOf(*b.object);
+      box_[i] = BoxOf(obb_[i]);
+    }
   }
   placed_ = true;
 }
@@ -520,7 +544,9 @@ bool FclWorld::CollideCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd*
   auto* d = static_cast<CollideData*>(data);
   const int i = d->world->IndexOf(o1), j = d->world->IndexOf(o2);
   // Overlapping world boxes of tilted or large bodies often have separated oriented boxes.
-  if (d->world->Checked(i, j) && ObbGapLowerBound(ObbOf(*o1), ObbOf(*o2)) <= 0.0) {
+  if (d->world->Checked(i, j) &&
+      ObbGapLowerBound(d->world->obb_[static_cast<std::size_t>(i)],
+                       d->world->obb_[static_cast<std::size_t>(j)], 1e-12) <= 0.0) {
     d->world->CheckPair(i, j, *d->result);
   }
   return false;
@@ -552,7 +578,8 @@ bool FclWorld::DistanceCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd
   auto* d = static_cast<DistanceData*>(data);
   const int i = d->world->IndexOf(o1), j = d->world->IndexOf(o2);
   if (d->world->Checked(i, j)) {
-    const double lb = ObbGapLowerBound(ObbOf(*o1), ObbOf(*o2));
+    const double lb = ObbGapLowerBound(d->world->obb_[static_cast<std::size_t>(i)],
+                                       d->world->obb_[static_cast<std::size_t>(j)], d->best);
     if (lb < d->best) d->candidates.push_back({lb, i, j});
   }
   dist = std::min(dist, d->best);
@@ -569,9 +596,9 @@ const std::vector<int>& FclWorld::NearEnv(std::size_t k, const JointVector& q, d
   n.env.clear();
   n.q_ref = q;
   n.radius = cutoff + kNearMarginM;
-  const fcl::AABBd& box = bodies_[static_cast<std::size_t>(robot_bodies_[k])].object->getAABB();
+  const fcl::AABBd& box = box_[static_cast<std::size_t>(robot_bodies_[k])];
   for (int e : fixed_env_) {
-    if (box.distance(bodies_[static_cast<std::size_t>(e)].object->getAABB()) < n.radius) {
+    if (box.distance(box_[static_cast<std::size_t>(e)]) < n.radius) {
       n.env.push_back(e);
     }
   }
@@ -596,17 +623,18 @@ CollisionResult FclWorld::Check(const JointVector& q, const CollisionOptions& op
   CollideData cd{this, &result};
   for (std::size_t k = 0; k < robot_bodies_.size(); ++k) {
     const int i = robot_bodies_[k];
-    const fcl::AABBd& box = object(i)->getAABB();
+    const fcl::AABBd& box = box_[static_cast<std::size_t>(i)];
     const std::vector<int>* near = &NearEnv(k, q, cutoff);
     for (const std::vector<int>* list :
          std::array<const std::vector<int>*, 2>{near, &moving_env_}) {
       for (int e : *list) {
-        if (box.overlap(object(e)->getAABB())) CollideCallback(object(i), object(e), &cd);
+        if (box.overlap(box_[static_cast<std::size_t>(e)]))
+          CollideCallback(object(i), object(e), &cd);
       }
     }
   }
   for (const auto& [i, j] : robot_self_pairs_) {
-    if (object(i)->getAABB().overlap(object(j)->getAABB())) {
+    if (box_[static_cast<std::size_t>(i)].overlap(box_[static_cast<std::size_t>(j)])) {
       CollideCallback(object(i), object(j), &cd);
     }
   }
@@ -634,19 +662,20 @@ CollisionResult FclWorld::Check(const JointVector& q, const CollisionOptions& op
       double unused = dd.best;
       for (std::size_t k = 0; k < robot_bodies_.size(); ++k) {
         const int i = robot_bodies_[k];
-        const fcl::AABBd& box = object(i)->getAABB();
+        const fcl::AABBd& box = box_[static_cast<std::size_t>(i)];
         const std::vector<int>* near = &near_[k].env;
         for (const std::vector<int>* list :
              std::array<const std::vector<int>*, 2>{near, &moving_env_}) {
           for (int e : *list) {
-            if (box.distance(object(e)->getAABB()) < dd.best) {
+            if (box.distance(box_[static_cast<std::size_t>(e)]) < dd.best) {
               DistanceCallback(object(i), object(e), &dd, unused);
             }
           }
         }
       }
       for (const auto& [i, j] : robot_self_pairs_) {
-        if (object(i)->getAABB().distance(object(j)->getAABB()) < dd.best) {
+        if (box_[static_cast<std::size_t>(i)].distance(box_[static_cast<std::size_t>(j)]) <
+            dd.best) {
           DistanceCallback(object(i), object(j), &dd, unused);
         }
       }
