@@ -150,11 +150,17 @@ MjModelPtr LoadSceneModel(const scene::Scene& scene, DiagnosticSink& sink) {
   }
   // cell.omit: the fixture's geoms go to group 5, which the renderer's default visual
   // options (groups 0 to 2) never draw.
+  // The part rides in the mount's body but is never omitted with it.
+  const int part = mj_name2id(m, mjOBJ_BODY, "part");
   for (int g = 0; g < m->ngeom; ++g) {
     int top = m->geom_bodyid[g];
-    while (top != 0 && m->body_parentid[top] != 0) top = m->body_parentid[top];
+    bool in_part = false;
+    while (top != 0 && m->body_parentid[top] != 0) {
+      in_part = in_part || top == part;
+      top = m->body_parentid[top];
+    }
     const char* n = top != 0 ? mj_id2name(m, mjOBJ_BODY, top) : nullptr;
-    if (n != nullptr && scene.OmitsMjcfBody(n)) m->geom_group[g] = kHiddenGeomGroup;
+    if (!in_part && n != nullptr && scene.OmitsMjcfBody(n)) m->geom_group[g] = kHiddenGeomGroup;
   }
   return MjModelPtr(m);
 }

@@ -5,11 +5,13 @@
 
 #include <fcl/fcl.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 
 #include "detail/collision_mjcf.h"
 #include "stitchsim/geom/surface.h"
@@ -30,6 +32,15 @@ constexpr double kNearMarginM = 0.2;
 enum class Group { kRobot, kCell, kPart };
 enum class PartKind { kNone, kMold, kPreform, kConstraint };
 
+// An oriented box bounding a body at its current pose: its geometry's local bounding box
+// carried by the object's transform (tight for primitives and for part tiles, whose local
+// frame is the part frame).
+struct Obb {
+  Eigen::Vector3d c;
+  Eigen::Matrix3d r;
+  Eigen::Vector3d e;
+};
+
 // One FCL object: a rigid geometry fixed to a URDF link or to the part frame.
 struct Body {
   std::string name;  // reported name: link, "head:<geom>", "mold", "constraint:<name>", ...
@@ -46,8 +57,29 @@ struct Body {
   MjcfShape shape = MjcfShape::kBox;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();
   std::shared_ptr<const geom::TriangleMesh> mesh_m;  // part meshes, metres
+  std::optional<Obb> fitted;  // meshes: a box fitted to the vertices, geometry frame
   std::unique_ptr<fcl::CollisionObjectd> object;
 };
+
+// A box around a mesh along its principal axes (a tile of a curved slab: thin along its
+// normal, where the box of its part-frame bounds would hold all its slope).
+Obb FitObb(const geom::TriangleMesh& mesh_m) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& v : mesh_m.vertices) mean += v;
+  mean /= static_cast<double>(std::max<std::size_t>(1, mesh_m.vertices.size()));
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const auto& v : mesh_m.vertices) cov += (v - mean) * (v - mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  Eigen::Matrix3d r = eig.eigenvectors();
+  if (r.determinant() < 0) r.col(0) = -r.col(0);
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+  for (const auto& v : mesh_m.vertices) {
+    const Eigen::Vector3d p = r.transpose() * (v - mean);
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return {mean + r * (0.5 * (lo + hi)), r, 0.5 * (hi - lo)};
+}
 
 fcl::Transform3d ToFcl(const Eigen::Isometry3d& t) {
   fcl::Transform3d out = fcl::Transform3d::Identity();
@@ -94,18 +126,10 @@ geom::TriangleMesh ScaledMesh(const geom::TriangleMesh& mm, double scale) {
   return out;
 }
 
-// An oriented box bounding a body at its current pose: its geometry's local bounding box
-// carried by the object's transform (tight for primitives and for part tiles, whose local
-// frame is the part frame).
-struct Obb {
-  Eigen::Vector3d c;
-  Eigen::Matrix3d r;
-  Eigen::Vector3d e;
-};
-
-Obb ObbOf(const fcl::CollisionObjectd& o) {
-  const auto& box = o.collisionGeometry()->aabb_local;
-  const fcl::Transform3d& t = o.getTransform();
+Obb ObbOf(const Body& b) {
+  const fcl::Transform3d& t = b.object->getTransform();
+  if (b.fitted) return {t * b.fitted->c, t.linear() * b.fitted->r, b.fitted->e};
+  const auto& box = b.object->collisionGeometry()->aabb_local;
   return {t * (0.5 * (box.min_ + box.max_)), t.linear(), 0.5 * (box.max_ - box.min_)};
 }
 
@@ -354,6 +378,7 @@ bool FclWorld::Build(const scene::Scene& scene, DiagnosticSink& sink) {
     b.local = local;
     b.mesh_m = std::make_shared<geom::TriangleMesh>(ScaledMesh(mesh_mm, 1e-3));
     b.geometry = MakeMesh(*b.mesh_m);
+    b.fitted = FitObb(*b.mesh_m);
     AddBody(std::move(b));
   };
   // Tiles of at most kPartTileMm, so the broad phase drops the far parts of a large part
@@ -463,9 +488,9 @@ bool FclWorld::Build(const scene::Scene& scene, DiagnosticSink& sink) {
   obb_.resize(static_cast<std::size_t>(n_));
   box_.resize(static_cast<std::size_t>(n_));
   for (int i = 0; i < n_; ++i)
-    box_[static_cast<std::size_t>(i)] = BoxOf(ObbOf(*bodies_[static_cast<std::size_t>(i)].object));
+    box_[static_cast<std::size_t>(i)] = BoxOf(ObbOf(bodies_[static_cast<std::size_t>(i)]));
   for (int i = 0; i < n_; ++i)
-    obb_[static_cast<std::size_t>(i)] = ObbOf(*bodies_[static_cast<std::size_t>(i)].object);
+    obb_[static_cast<std::size_t>(i)] = ObbOf(bodies_[static_cast<std::size_t>(i)]);
 
   // MaxPointTravel coefficients: for each robot rigid group, the reach from each joint it
   // hangs on to its farthest point (chain of link offsets + bounding sphere), q-independent.
@@ -533,7 +558,7 @@ void FclWorld::Place(const JointVector& q) {
     b.object->computeAABB();
     if (!obb_.empty()) {
       const std::size_t i = static_cast<std::size_t>(&b - bodies_.data());
-      obb_[i] = ObbOf(*b.object);
+      obb_[i] = ObbOf(b);
       box_[i] = BoxOf(obb_[i]);
     }
   }

@@ -3,9 +3,12 @@
 // same view).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "stitchsim/render/renderer.h"
@@ -56,9 +59,20 @@ TEST_P(RenderEveryScene, PngShowsRobotHeadMoldAndPath) {
   EXPECT_LT(count("background"), total / 2) << j.dump();
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, RenderEveryScene,
-                         ::testing::Values("flat_straight", "circle_8in", "cutout_slot",
-                                           "cylinder_r90_frame", "arcs_planar", "blade_demo"));
+// Every bundled scene (scenes/*.yaml).
+std::vector<std::string> BundledScenes() {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(kSource / "scenes")) {
+    if (e.path().extension() == ".yaml") names.push_back(e.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, RenderEveryScene, ::testing::ValuesIn(BundledScenes()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           return info.param;
+                         });
 
 TEST(Render, HeadViewIsAClosePicture) {
   const fs::path png = fs::temp_directory_path() / "stitchsim_render_head.png";
