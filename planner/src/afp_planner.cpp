@@ -243,10 +243,7 @@ std::optional<AfpPlan> PlanAfpCourse(const scene::Scene& scene, const scene::Pat
 void WriteAfpProgram(const AfpPlan& plan, const scene::Scene& scene,
                      const program::Dialect& dialect, std::ostream& out) {
   using program::Axis;
-  const geom::EulerOrder order =
-      geom::ParseEulerOrder(dialect.euler_order).value_or(geom::EulerOrder{});
   program::ProgramWriter w(out, dialect);
-  w.WriteMark();
   program::ProgramHeader header;
   header.entries = {{"scene", scene.name},
                     {"head", scene.head.name},
@@ -257,36 +254,20 @@ void WriteAfpProgram(const AfpPlan& plan, const scene::Scene& scene,
   if (std::isfinite(plan.lay_angle_rad))
     header.entries.insert(header.entries.begin() + 3,
                           {"lay_angle_deg", Fixed(plan.lay_angle_rad * kRadToDeg)});
-  w.WriteHeader(header);
 
   program::Block b;
-  detail::WriteSetup(w, b, dialect, scene.head.tool_number);
-
-  Eigen::Vector3d angles_rad = Eigen::Vector3d::Zero();
-  bool have_angles = false;
+  detail::WriteOpening(w, b, dialect, header, scene.head.tool_number);
+  detail::PoseWords pose_words(dialect);
   for (const AfpPoint& p : plan.points) {
     b.Clear();
-    const Eigen::Vector3d e =
-        geom::EulerFromRotation(order, p.tool.linear(), have_angles ? &angles_rad : nullptr);
-    angles_rad = e;
-    have_angles = true;
     b.motion = p.index == 0 ? program::Motion::kRapid : program::Motion::kFeed;
-    b[Axis::kX] = p.position.x();
-    b[Axis::kY] = p.position.y();
-    b[Axis::kZ] = p.position.z();
-    b[Axis::kA] = e.x() * kRadToDeg;
-    b[Axis::kB] = e.y() * kRadToDeg;
-    b[Axis::kC] = e.z() * kRadToDeg;
+    pose_words.Set(b, p.position, p.tool.linear());
     b[Axis::kPathLength] = p.s_mm;
     if (p.index == 0) b.comment = "start";
     if (p.index == 1) b.feed = scene.head.afp.layup_speed_mm_s * 60.0;
     w.Write(b);
   }
-  b.Clear();
-  b.m_codes = {dialect.m.program_end};
-  w.Write(b);
-  w.WriteMark();
-  w.Flush();
+  detail::WriteEnding(w, b, dialect);
 }
 
 void WriteAfpCsv(const AfpPlan& plan, std::ostream& out) {

@@ -10,6 +10,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "detail/program_text.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/block.h"
 #include "stitchsim/program/writer.h"
@@ -17,7 +18,6 @@
 namespace stitchsim::planner {
 namespace {
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 // Traverse speed and retract / lower time for the time estimate (the head spec has none).
 constexpr double kTraverseMmPerMin = 20000.0;
 constexpr double kRetractLowerS = 0.5;
@@ -448,8 +448,6 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
     }
   }
 
-  const geom::EulerOrder order =
-      geom::ParseEulerOrder(dialect.euler_order).value_or(geom::EulerOrder{});
   const auto& st = scene.head.stitch;
   const double feed_mm_min = st.stitch_rate_per_min * o.pitch_mm;
   const double stitch_time_s = 60.0 / st.stitch_rate_per_min;
@@ -457,7 +455,6 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
   RasterSummary sum;
   sum.head_stitches.assign(static_cast<std::size_t>(o.heads), 0);
   program::ProgramWriter w(out, dialect);
-  w.WriteMark();
   program::ProgramHeader header;
   header.entries = {{"scene", scene.name},
                     {"head", scene.head.name},
@@ -465,32 +462,9 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
                     {"stitch_length_mm", Num(o.pitch_mm)},
                     {"row_spacing_mm", Num(o.row_spacing_mm)},
                     {"heads", std::to_string(o.heads)}};
-  w.WriteHeader(header);
   program::Block b;
-  b.units = LengthUnit::kMillimetre;
-  b.absolute = true;
-  w.Write(b);
-  b.Clear();
-  b.tool = scene.head.tool_number;
-  b.m_codes = {dialect.m.tool_change};
-  w.Write(b);
-
-  Eigen::Vector3d angles_rad = Eigen::Vector3d::Zero();
-  bool have_angles = false;
-  Eigen::Matrix3d angles_of = Eigen::Matrix3d::Zero();
-  auto set_pose = [&](program::Block& blk, const Eigen::Vector3d& p, const Eigen::Matrix3d& r) {
-    if (!have_angles || r != angles_of) {
-      angles_rad = geom::EulerFromRotation(order, r, have_angles ? &angles_rad : nullptr);
-      angles_of = r;
-      have_angles = true;
-    }
-    blk[Axis::kX] = p.x();
-    blk[Axis::kY] = p.y();
-    blk[Axis::kZ] = p.z();
-    blk[Axis::kA] = angles_rad.x() * kRadToDeg;
-    blk[Axis::kB] = angles_rad.y() * kRadToDeg;
-    blk[Axis::kC] = angles_rad.z() * kRadToDeg;
-  };
+  detail::WriteOpening(w, b, dialect, header, scene.head.tool_number);
+  detail::PoseWords pose_words(dialect);
   auto frame = [&](double u, double v, double dir) {
     const Eigen::Vector2d uv(u, v);
     const Eigen::Vector3d t = dir * surface.Jacobian(uv).col(0);
@@ -539,7 +513,7 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
     auto rapid = [&](const Eigen::Vector3d& p, const Eigen::Matrix3d& rot) {
       b.Clear();
       b.motion = program::Motion::kRapid;
-      set_pose(b, p, rot);
+      pose_words.Set(b, p, rot);
       b[Axis::kDrive] = drive;
       b[Axis::kPathLength] = drive;
       w.Write(b);
@@ -549,10 +523,10 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
     // alternating sense, so the wrist unwinds instead of winding up and the interpolation
     // between the end orientations is never ambiguous.
     auto quarter_turn_at = [&](const Eigen::Vector3d& p) {
-      if (have_pos && geom::AngleBetween(angles_of, r) > 0.5 * 3.14159265358979323846) {
-        rapid(p, angles_of * Eigen::AngleAxisd(0.5 * turn_sign * 3.14159265358979323846,
-                                               Eigen::Vector3d::UnitZ())
-                                 .toRotationMatrix());
+      if (have_pos && geom::AngleBetween(pose_words.Rotation(), r) > 0.5 * 3.14159265358979323846) {
+        rapid(p, pose_words.Rotation() * Eigen::AngleAxisd(0.5 * turn_sign * 3.14159265358979323846,
+                                                           Eigen::Vector3d::UnitZ())
+                                             .toRotationMatrix());
       }
     };
     if (retract) {
@@ -562,7 +536,7 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
       sum.traverse_s += kRetractLowerS;
       // Up along the normals, across, down: high enough that the straight transit keeps
       // `lift_clear_mm` over the surface all the way (a bay move may cross the crown).
-      const Eigen::Vector3d na = angles_of.col(2), nb = r.col(2);
+      const Eigen::Vector3d na = pose_words.Rotation().col(2), nb = r.col(2);
       double lift = lift_clear_mm;
       for (int it = 0; it < 8; ++it) {
         const Eigen::Vector3d a = pos + lift * na, c = to + lift * nb;
@@ -577,7 +551,7 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
         lift += deficit + 1.0;
       }
       const Eigen::Vector3d up = pos + lift * na, over = to + lift * nb;
-      rapid(up, angles_of);
+      rapid(up, pose_words.Rotation());
       quarter_turn_at(up);
       rapid(over, r);
       rapid(to, r);
@@ -656,7 +630,7 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
             const Eigen::Vector3d p = surface.Point({next, piece.v});
             b.Clear();
             b.motion = program::Motion::kFeed;
-            set_pose(b, p, frame(next, piece.v, dir));
+            pose_words.Set(b, p, frame(next, piece.v, dir));
             b[Axis::kDrive] = drive;
             b[Axis::kPathLength] = drive;
             if (!feed_written) b.feed = feed_mm_min;
@@ -685,9 +659,7 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
     }
   }
   if (stitching) m_line({dialect.m.stitch_off});
-  m_line({dialect.m.program_end});
-  w.WriteMark();
-  w.Flush();
+  detail::WriteEnding(w, b, dialect);
   return sum;
 }
 

@@ -173,8 +173,6 @@ ProgramSummary WriteStitchProgram(StitchPathPlanner& planner, const scene::Scene
                                   const std::string& path_name, const program::Dialect& dialect,
                                   std::ostream& out) {
   using program::Axis;
-  const geom::EulerOrder order =
-      geom::ParseEulerOrder(dialect.euler_order).value_or(geom::EulerOrder{});
   const auto& st = scene.head.stitch;
   const double l = planner.StitchLengthMm();
   const double feed_mm_min = st.stitch_rate_per_min * l;
@@ -187,7 +185,6 @@ ProgramSummary WriteStitchProgram(StitchPathPlanner& planner, const scene::Scene
   summary.path_length_mm = planner.PathLengthMm();
 
   program::ProgramWriter w(out, dialect);
-  w.WriteMark();
   program::ProgramHeader header;
   auto num = [](double v) {
     char buf[32];
@@ -198,36 +195,13 @@ ProgramSummary WriteStitchProgram(StitchPathPlanner& planner, const scene::Scene
       {"scene", scene.name},        {"head", scene.head.name},
       {"path", path_name},          {"mode", std::string(ToString(planner.GetMode()))},
       {"stitch_length_mm", num(l)}, {"stitches", std::to_string(planner.StitchCount())}};
-  w.WriteHeader(header);
-
   program::Block b;
-  Eigen::Vector3d angles_deg = Eigen::Vector3d::Zero();
-  Eigen::Vector3d angles_rad = Eigen::Vector3d::Zero();
-  bool have_angles = false;
-  Eigen::Matrix3d angles_of = Eigen::Matrix3d::Zero();  // the rotation angles_rad describe
-  auto set_pose = [&](program::Block& blk, const Eigen::Isometry3d& pose) {
-    // The same rotation again (a decoupled translation line, a straight row) gives the same
-    // angles: EulerFromRotation with its own result as hint returns that result.
-    if (!have_angles || pose.linear() != angles_of) {
-      const Eigen::Vector3d e =
-          geom::EulerFromRotation(order, pose.linear(), have_angles ? &angles_rad : nullptr);
-      angles_rad = e;
-      angles_deg = e * kRadToDeg;
-      angles_of = pose.linear();
-      have_angles = true;
-    }
-    blk[Axis::kX] = pose.translation().x();
-    blk[Axis::kY] = pose.translation().y();
-    blk[Axis::kZ] = pose.translation().z();
-    blk[Axis::kA] = angles_deg.x();
-    blk[Axis::kB] = angles_deg.y();
-    blk[Axis::kC] = angles_deg.z();
-  };
-  detail::WriteSetup(w, b, dialect, scene.head.tool_number);
+  detail::PoseWords pose_words(dialect);
+  detail::WriteOpening(w, b, dialect, header, scene.head.tool_number);
   // Start line: the first stitch's pose, both cumulative axes at zero.
   b.Clear();
   b.motion = program::Motion::kRapid;
-  set_pose(b, planner.StartPose());
+  pose_words.Set(b, planner.StartPose());
   b[Axis::kDrive] = 0.0;
   b[Axis::kPathLength] = 0.0;
   b.comment = "start";
@@ -250,7 +224,7 @@ ProgramSummary WriteStitchProgram(StitchPathPlanner& planner, const scene::Scene
       b.motion = program::Motion::kFeed;
       Eigen::Isometry3d translate = s.start;
       translate.translation() = s.end.translation();
-      set_pose(b, translate);
+      pose_words.Set(b, translate);
       b[Axis::kDrive] = uv;
       b[Axis::kPathLength] = uv;
       if (!feed_written) b.feed = feed_mm_min;
@@ -258,7 +232,7 @@ ProgramSummary WriteStitchProgram(StitchPathPlanner& planner, const scene::Scene
       w.Write(b);
       // Line 2: pure rotation to the next stitch's frame, drive unchanged (needles out).
       b.Clear();
-      set_pose(b, s.end);
+      pose_words.Set(b, s.end);
       b[Axis::kDrive] = uv;
       b[Axis::kPathLength] = uv;
       w.Write(b);
@@ -268,7 +242,7 @@ ProgramSummary WriteStitchProgram(StitchPathPlanner& planner, const scene::Scene
     } else {
       b.Clear();
       b.motion = program::Motion::kFeed;
-      set_pose(b, s.end);
+      pose_words.Set(b, s.end);
       b[Axis::kDrive] = uv;
       b[Axis::kPathLength] = uv;
       if (!feed_written) b.feed = feed_mm_min;
@@ -281,11 +255,7 @@ ProgramSummary WriteStitchProgram(StitchPathPlanner& planner, const scene::Scene
   b.Clear();
   b.m_codes = {dialect.m.stitch_off};
   w.Write(b);
-  b.Clear();
-  b.m_codes = {dialect.m.program_end};
-  w.Write(b);
-  w.WriteMark();
-  w.Flush();
+  detail::WriteEnding(w, b, dialect);
   return summary;
 }
 
