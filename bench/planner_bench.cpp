@@ -20,6 +20,7 @@
 #include <streambuf>
 #include <string>
 
+#include "bench_support.h"
 #include "stitchsim/common/diagnostics.h"
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/program/dialect.h"
@@ -27,6 +28,8 @@
 
 namespace stitchsim::planner {
 namespace {
+
+using stitchsim::bench::CountingSink;
 
 namespace fs = std::filesystem;
 
@@ -109,22 +112,6 @@ class BenchScenes {
 
   std::unique_ptr<scene::Scene> line_;
   std::unique_ptr<scene::Scene> circle_;
-};
-
-// Discards output, counting bytes.
-class CountingSink : public std::streambuf {
- public:
-  std::uint64_t bytes = 0;
-
- protected:
-  std::streamsize xsputn(const char*, std::streamsize n) override {
-    bytes += static_cast<std::uint64_t>(n);
-    return n;
-  }
-  int_type overflow(int_type c) override {
-    ++bytes;
-    return c;
-  }
 };
 
 const scene::Scene& SceneOf(int which) {

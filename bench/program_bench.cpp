@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_support.h"
 #include "stitchsim/common/diagnostics.h"
 #include "stitchsim/common/units.h"
 #include "stitchsim/program/modal_state.h"
@@ -27,6 +28,8 @@
 
 namespace stitchsim::program {
 namespace {
+
+using stitchsim::bench::CountingSink;
 
 constexpr int kStitches = 1'000'000;
 constexpr double kStitchLengthMm = 5.0;
@@ -121,22 +124,6 @@ class MemoryBuffer : public std::streambuf {
   explicit MemoryBuffer(const std::string& text) {
     char* begin = const_cast<char*>(text.data());
     setg(begin, begin, begin + text.size());
-  }
-};
-
-// Discards output, counting bytes.
-class CountingSink : public std::streambuf {
- public:
-  std::uint64_t bytes = 0;
-
- protected:
-  std::streamsize xsputn(const char*, std::streamsize n) override {
-    bytes += static_cast<std::uint64_t>(n);
-    return n;
-  }
-  int_type overflow(int_type c) override {
-    ++bytes;
-    return c;
   }
 };
 

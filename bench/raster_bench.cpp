@@ -5,7 +5,6 @@
 // stitches/s and resident memory per step, for half and full span, so that memory that grew
 // with the programme would show. Every rule must pass.
 // Usage: raster_bench [--plan-only] [--half-only] [--no-collision]
-#include <sys/resource.h>
 
 #include <chrono>
 #include <cstdio>
@@ -14,6 +13,7 @@
 #include <fstream>
 #include <string>
 
+#include "bench_support.h"
 #include "stitchsim/planner/raster_planner.h"
 #include "stitchsim/sim/collision.h"
 #include "stitchsim/sim/executor.h"
@@ -21,22 +21,12 @@
 
 namespace {
 
+using stitchsim::bench::CurrentRssKb;
+using stitchsim::bench::PeakRssKb;
+
 using namespace stitchsim;
 namespace fs = std::filesystem;
 constexpr double kInch = 25.4;
-
-long PeakRssKb() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_maxrss;
-}
-
-long CurrentRssKb() {
-  std::ifstream in("/proc/self/statm");
-  long pages = 0, resident = 0;
-  in >> pages >> resident;
-  return resident * (sysconf(_SC_PAGESIZE) / 1024);
-}
 
 double Seconds(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -71,10 +61,7 @@ int main(int argc, char** argv) {
   const fs::path dir = fs::temp_directory_path() / "stitchsim_raster_bench";
   fs::create_directories(dir);
   const program::Dialect& dialect = program::Dialect::Default();
-  planner::RasterOptions defaults;
-  defaults.pitch_mm = scene->raster.pitch_mm.value_or(defaults.pitch_mm);
-  defaults.row_spacing_mm = scene->raster.row_spacing_mm.value_or(defaults.row_spacing_mm);
-  defaults.margin_mm = scene->raster.margin_mm.value_or(defaults.margin_mm);
+  const planner::RasterOptions defaults = planner::RasterOptionsFor(*scene);
   std::printf(
       "wing_cover: 480 x 96 in, pitch %.3f in, rows %.3f in, margin %.2f in, collision %s; "
       "start peak RSS %.1f MiB\n",

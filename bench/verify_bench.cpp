@@ -2,17 +2,19 @@
 // every rule); report stitches/s and the peak resident memory, for two programme lengths so
 // that memory that grows with the programme would show.
 #include <benchmark/benchmark.h>
-#include <sys/resource.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "bench_support.h"
 #include "stitchsim/sim/executor.h"
 #include "stitchsim/verify/verifier.h"
 
 namespace {
+
+using stitchsim::bench::PeakRssKb;
 
 using namespace stitchsim;
 namespace fs = std::filesystem;
@@ -76,12 +78,6 @@ Prepared Prepare(long stitches) {
   p.program = WriteProgram(stitches);
   p.stitches = std::max(1L, stitches / 100) * 100;
   return p;
-}
-
-long PeakRssKb() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_maxrss;
 }
 
 void BM_VerifyDecoupledRaster(benchmark::State& state) {

@@ -50,20 +50,27 @@ std::unique_ptr<scene::Scene> LoadStitchingScene(const std::string& file) {
   return scene;
 }
 
+// The scene's path named `name` (the first path when empty); reported (plan-unknown-path,
+// with the names there are) and nullptr when there is none of that name.
+const scene::PathSpec* PathOrReport(const scene::Scene& scene, const std::string& file,
+                                    const std::string& name) {
+  const scene::PathSpec* path = name.empty() ? &scene.paths.front() : scene.FindPath(name);
+  if (path == nullptr) {
+    std::string names;
+    for (const auto& p : scene.paths) names += (names.empty() ? "" : ", ") + p.name;
+    PrintError("plan-unknown-path", file + ": no path named '" + name + "' (paths: " + names + ")");
+  }
+  return path;
+}
+
 int RunPlanStitch(const PlanStitchArgs& a) {
   const std::optional<program::Dialect> dialect = DialectOption(a.dialect);
   if (!dialect) return kExitBadInput;
   DiagnosticSink sink;
   auto scene = LoadStitchingScene(a.scene);
   if (!scene) return kExitBadInput;
-  const scene::PathSpec* path = a.path.empty() ? &scene->paths.front() : scene->FindPath(a.path);
-  if (path == nullptr) {
-    std::string names;
-    for (const auto& p : scene->paths) names += (names.empty() ? "" : ", ") + p.name;
-    PrintError("plan-unknown-path",
-               a.scene + ": no path named '" + a.path + "' (paths: " + names + ")");
-    return kExitBadInput;
-  }
+  const scene::PathSpec* path = PathOrReport(*scene, a.scene, a.path);
+  if (path == nullptr) return kExitBadInput;
   planner::StitchPlanOptions options;
   options.mode = *planner::ParseMode(a.mode);
   if (a.stitch_length_mm != 0.0) options.nominal_stitch_length_mm = a.stitch_length_mm;
@@ -272,14 +279,8 @@ int RunPlanAfp(const PlanAfpArgs& a) {
   const bool by_lay_angle = !std::isnan(a.lay_angle_deg);
   const scene::PathSpec* path = nullptr;
   if (!by_lay_angle) {
-    path = a.path.empty() ? &scene->paths.front() : scene->FindPath(a.path);
-    if (path == nullptr) {
-      std::string names;
-      for (const auto& p : scene->paths) names += (names.empty() ? "" : ", ") + p.name;
-      PrintError("plan-unknown-path",
-                 a.scene + ": no path named '" + a.path + "' (paths: " + names + ")");
-      return kExitBadInput;
-    }
+    path = PathOrReport(*scene, a.scene, a.path);
+    if (path == nullptr) return kExitBadInput;
   }
   planner::AfpPlanOptions options;
   if (by_lay_angle) options.lay_angle_rad = a.lay_angle_deg * kDegToRad;
@@ -321,15 +322,11 @@ int RunPlanRaster(const PlanRasterArgs& a) {
   auto scene = LoadStitchingScene(a.scene);
   if (!scene) return kExitBadInput;
   constexpr double kInch = 25.4;
-  planner::RasterOptions o;
+  planner::RasterOptions o = planner::RasterOptionsFor(*scene);
   o.strategy = *planner::ParseRasterStrategy(a.strategy);
-  auto pick = [&](const std::optional<double>& cli_in, const std::optional<double>& scene_mm,
-                  double fallback_mm) {
-    return cli_in ? *cli_in * kInch : scene_mm.value_or(fallback_mm);
-  };
-  o.pitch_mm = pick(a.pitch_in, scene->raster.pitch_mm, o.pitch_mm);
-  o.row_spacing_mm = pick(a.row_spacing_in, scene->raster.row_spacing_mm, o.row_spacing_mm);
-  o.margin_mm = pick(a.margin_in, scene->raster.margin_mm, o.margin_mm);
+  if (a.pitch_in) o.pitch_mm = *a.pitch_in * kInch;
+  if (a.row_spacing_in) o.row_spacing_mm = *a.row_spacing_in * kInch;
+  if (a.margin_in) o.margin_mm = *a.margin_in * kInch;
   o.heads = a.heads;
   o.out_of_service = a.out_of_service;
   if (a.region_in.size() == 4) {

@@ -120,6 +120,14 @@ std::string Num(double v) {
 
 }  // namespace
 
+RasterOptions RasterOptionsFor(const scene::Scene& scene) {
+  RasterOptions o;
+  o.pitch_mm = scene.raster.pitch_mm.value_or(o.pitch_mm);
+  o.row_spacing_mm = scene.raster.row_spacing_mm.value_or(o.row_spacing_mm);
+  o.margin_mm = scene.raster.margin_mm.value_or(o.margin_mm);
+  return o;
+}
+
 std::optional<RasterStrategy> ParseRasterStrategy(std::string_view text) {
   if (text == "jump") return RasterStrategy::kJump;
   if (text == "serpentine") return RasterStrategy::kSerpentine;

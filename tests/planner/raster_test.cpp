@@ -29,11 +29,8 @@ std::unique_ptr<scene::Scene> Wing() {
 // A window around the crossing of intercostal_3 (x = -40 in) and stringer_2 (y = -15 in),
 // with the scene's raster defaults.
 RasterOptions SmallWindow(const scene::Scene& s, RasterStrategy strategy) {
-  RasterOptions o;
+  RasterOptions o = RasterOptionsFor(s);
   o.strategy = strategy;
-  o.pitch_mm = s.raster.pitch_mm.value_or(o.pitch_mm);
-  o.row_spacing_mm = s.raster.row_spacing_mm.value_or(o.row_spacing_mm);
-  o.margin_mm = s.raster.margin_mm.value_or(o.margin_mm);
   o.region =
       Eigen::AlignedBox2d(Eigen::Vector2d(-46, -21) * kInch, Eigen::Vector2d(-34, -9) * kInch);
   return o;

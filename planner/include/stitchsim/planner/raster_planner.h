@@ -80,6 +80,10 @@ struct RasterOptions {
   UserCodeLibrary library;
 };
 
+/// The defaults with the scene's `raster:` values (pitch, row spacing, margin) where it gives
+/// them.
+RasterOptions RasterOptionsFor(const scene::Scene& scene);
+
 /// What WriteRasterProgram wrote.
 struct RasterSummary {
   long stitches = 0;
