@@ -231,30 +231,20 @@ class FclWorld final : public CollisionWorld {
   double MaxPointTravel(const JointVector& a, const JointVector& b) const override;
 
  private:
-  struct CollideData {
-    FclWorld* world;
-    CollisionResult* result;
-  };
   struct Candidate {
     double bound;  // lower bound on the pair's distance (m)
     int i, j;
   };
-  struct DistanceData {
-    FclWorld* world;
-    CollisionResult* result;
-    double best;
-    std::vector<Candidate> candidates;
-    int a = -1, b = -1;
-  };
-  static bool CollideCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data);
-  static bool DistanceCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data,
-                               double& dist);
-  int IndexOf(const fcl::CollisionObjectd* o) const {
-    return static_cast<int>(reinterpret_cast<std::intptr_t>(o->getUserData()));
-  }
   bool Checked(int i, int j) const { return pair_checked_[static_cast<std::size_t>(i * n_ + j)]; }
   void Place(const JointVector& q);
+  // Calls visit(i, j) for every pair that may interact: each robot body with its near list
+  // and the rotator-carried bodies, then the robot-robot pairs (near lists current).
+  template <class Visit>
+  void ForEachPair(Visit&& visit) const;
   void CheckPair(int i, int j, CollisionResult& result) const;
+  // Smallest distance over the checked pairs, up to `cutoff` (m); sets result's clearance,
+  // pair or error.
+  void Clearance(double cutoff, CollisionResult& result);
   CollisionResult CheckNaive(const JointVector& q, const CollisionOptions& options);
   void AddBody(Body body) { bodies_.push_back(std::move(body)); }
   int RigidOf(int link) const;
@@ -277,7 +267,7 @@ class FclWorld final : public CollisionWorld {
     JointVector q_ref = JointVector::Zero();
     double radius = -1.0;  // cutoff + margin the list was made for (< 0: none yet)
   };
-  const std::vector<int>& NearEnv(std::size_t k, const JointVector& q, double cutoff);
+  void UpdateNear(std::size_t k, const JointVector& q, double cutoff);
   std::vector<int> robot_bodies_;
   std::vector<int> robot_group_;  // per robot_bodies_ entry: its travel_coeff_ index
   std::vector<NearSet> near_;     // per robot_bodies_ entry
@@ -295,6 +285,7 @@ class FclWorld final : public CollisionWorld {
   double rotator_reach_m_ = 0.0;
   // Recent results (the executor and three rules ask about the same joints).
   struct Cached {
+    std::uint64_t key;  // hash of the query, compared first
     JointVector q;
     bool clearance;
     double cutoff;
@@ -469,7 +460,6 @@ bool FclWorld::Build(const scene::Scene& scene, DiagnosticSink& sink) {
   for (int i = 0; i < n_; ++i) {
     Body& b = bodies_[static_cast<std::size_t>(i)];
     b.object = std::make_unique<fcl::CollisionObjectd>(b.geometry, fcl::Transform3d::Identity());
-    b.object->setUserData(reinterpret_cast<void*>(static_cast<std::intptr_t>(i)));
     if (b.group == Group::kRobot) {
       robot_bodies_.push_back(i);
     } else {
@@ -555,7 +545,6 @@ void FclWorld::Place(const JointVector& q) {
     const Eigen::Isometry3d frame =
         b.group == Group::kPart ? part : frames_.world_pose[static_cast<std::size_t>(b.link)];
     b.object->setTransform(ToFcl(frame * b.local));
-    b.object->computeAABB();
     if (!obb_.empty()) {
       const std::size_t i = static_cast<std::size_t>(&b - bodies_.data());
       obb_[i] = ObbOf(b);
@@ -563,18 +552,6 @@ void FclWorld::Place(const JointVector& q) {
     }
   }
   placed_ = true;
-}
-
-bool FclWorld::CollideCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data) {
-  auto* d = static_cast<CollideData*>(data);
-  const int i = d->world->IndexOf(o1), j = d->world->IndexOf(o2);
-  // Overlapping world boxes of tilted or large bodies often have separated oriented boxes.
-  if (d->world->Checked(i, j) &&
-      ObbGapLowerBound(d->world->obb_[static_cast<std::size_t>(i)],
-                       d->world->obb_[static_cast<std::size_t>(j)], 1e-12) <= 0.0) {
-    d->world->CheckPair(i, j, *d->result);
-  }
-  return false;
 }
 
 void FclWorld::CheckPair(int i, int j, CollisionResult& result) const {
@@ -596,27 +573,21 @@ void FclWorld::CheckPair(int i, int j, CollisionResult& result) const {
   result.contacts.push_back(std::move(out));
 }
 
-bool FclWorld::DistanceCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data,
-                                double& dist) {
-  // Only gathers the candidates (pairs whose world boxes are closer than the cutoff) with a
-  // lower bound on their distance; Check measures them nearest-bound first.
-  auto* d = static_cast<DistanceData*>(data);
-  const int i = d->world->IndexOf(o1), j = d->world->IndexOf(o2);
-  if (d->world->Checked(i, j)) {
-    const double lb = ObbGapLowerBound(d->world->obb_[static_cast<std::size_t>(i)],
-                                       d->world->obb_[static_cast<std::size_t>(j)], d->best);
-    if (lb < d->best) d->candidates.push_back({lb, i, j});
+template <class Visit>
+void FclWorld::ForEachPair(Visit&& visit) const {
+  for (std::size_t k = 0; k < robot_bodies_.size(); ++k) {
+    for (int e : near_[k].env) visit(robot_bodies_[k], e);
+    for (int e : moving_env_) visit(robot_bodies_[k], e);
   }
-  dist = std::min(dist, d->best);
-  return false;
+  for (const auto& [i, j] : robot_self_pairs_) visit(i, j);
 }
 
-const std::vector<int>& FclWorld::NearEnv(std::size_t k, const JointVector& q, double cutoff) {
+void FclWorld::UpdateNear(std::size_t k, const JointVector& q, double cutoff) {
   NearSet& n = near_[k];
   if (n.radius >= cutoff) {
     const double travel =
         travel_coeff_[static_cast<std::size_t>(robot_group_[k])].dot((q - n.q_ref).cwiseAbs());
-    if (std::sqrt(3.0) * travel < n.radius - cutoff) return n.env;
+    if (std::sqrt(3.0) * travel < n.radius - cutoff) return;
   }
   n.env.clear();
   n.q_ref = q;
@@ -627,122 +598,50 @@ const std::vector<int>& FclWorld::NearEnv(std::size_t k, const JointVector& q, d
       n.env.push_back(e);
     }
   }
-  return n.env;
 }
 
 CollisionResult FclWorld::Check(const JointVector& q, const CollisionOptions& options) {
   if (options.naive_baseline) return CheckNaive(q, options);
+  std::uint64_t key = 1469598103934665603ull;  // FNV-1a over the query's bytes
+  auto mix = [&key](const void* p, std::size_t n) {
+    for (std::size_t k = 0; k < n; ++k) {
+      key = (key ^ static_cast<const unsigned char*>(p)[k]) * 1099511628211ull;
+    }
+  };
+  mix(q.data(), sizeof(double) * static_cast<std::size_t>(q.size()));
+  mix(&options.clearance_cutoff_m, sizeof(double));
+  key ^= options.compute_clearance ? 1u : 0u;
   // Newest first: the rules ask about the sample just placed; the executor's look-ahead over
   // a long line may have placed a few hundred samples since.
   for (std::size_t n = 0; n < cache_.size(); ++n) {
     const Cached& c = cache_[(cache_next_ + cache_.size() - 1 - n) % cache_.size()];
-    if (c.q == q && c.clearance == options.compute_clearance &&
+    if (c.key == key && c.q == q && c.clearance == options.compute_clearance &&
         c.cutoff == options.clearance_cutoff_m) {
       return c.result;
     }
   }
   CollisionResult result;
   Place(q);
-  auto object = [&](int i) { return bodies_[static_cast<std::size_t>(i)].object.get(); };
   const double cutoff = std::max(options.clearance_cutoff_m, 0.0);
-  CollideData cd{this, &result};
-  for (std::size_t k = 0; k < robot_bodies_.size(); ++k) {
-    const int i = robot_bodies_[k];
-    const fcl::AABBd& box = box_[static_cast<std::size_t>(i)];
-    const std::vector<int>* near = &NearEnv(k, q, cutoff);
-    for (const std::vector<int>* list :
-         std::array<const std::vector<int>*, 2>{near, &moving_env_}) {
-      for (int e : *list) {
-        if (box.overlap(box_[static_cast<std::size_t>(e)]))
-          CollideCallback(object(i), object(e), &cd);
-      }
+  for (std::size_t k = 0; k < robot_bodies_.size(); ++k) UpdateNear(k, q, cutoff);
+  // Overlapping world boxes of tilted or large bodies often have separated oriented boxes.
+  ForEachPair([&](int i, int j) {
+    const auto a = static_cast<std::size_t>(i), b = static_cast<std::size_t>(j);
+    if (Checked(i, j) && box_[a].overlap(box_[b]) &&
+        ObbGapLowerBound(obb_[a], obb_[b], 1e-12) <= 0.0) {
+      CheckPair(i, j, result);
     }
-  }
-  for (const auto& [i, j] : robot_self_pairs_) {
-    if (box_[static_cast<std::size_t>(i)].overlap(box_[static_cast<std::size_t>(j)])) {
-      CollideCallback(object(i), object(j), &cd);
-    }
-  }
+  });
   if (options.compute_clearance) {
     if (!result.contacts.empty()) {
       result.min_clearance_m = 0.0;
       result.min_clearance_pair =
           result.contacts.front().body_a + "|" + result.contacts.front().body_b;
     } else {
-      DistanceData dd{this, &result, options.clearance_cutoff_m, {}};
-      dd.candidates.swap(candidates_);
-      dd.candidates.clear();
-      // Seed the best distance with the pair that was nearest at the previous query: its
-      // exact distance is a true clearance, and far fewer pairs then pass the bounds.
-      if (last_nearest_.first >= 0) {
-        fcl::DistanceRequestd req;
-        fcl::DistanceResultd res;
-        fcl::distance(object(last_nearest_.first), object(last_nearest_.second), req, res);
-        if (std::isfinite(res.min_distance) && res.min_distance < dd.best) {
-          dd.best = std::max(0.0, res.min_distance);
-          dd.a = last_nearest_.first;
-          dd.b = last_nearest_.second;
-        }
-      }
-      double unused = dd.best;
-      for (std::size_t k = 0; k < robot_bodies_.size(); ++k) {
-        const int i = robot_bodies_[k];
-        const fcl::AABBd& box = box_[static_cast<std::size_t>(i)];
-        const std::vector<int>* near = &near_[k].env;
-        for (const std::vector<int>* list :
-             std::array<const std::vector<int>*, 2>{near, &moving_env_}) {
-          for (int e : *list) {
-            if (box.distance(box_[static_cast<std::size_t>(e)]) < dd.best) {
-              DistanceCallback(object(i), object(e), &dd, unused);
-            }
-          }
-        }
-      }
-      for (const auto& [i, j] : robot_self_pairs_) {
-        if (box_[static_cast<std::size_t>(i)].distance(box_[static_cast<std::size_t>(j)]) <
-            dd.best) {
-          DistanceCallback(object(i), object(j), &dd, unused);
-        }
-      }
-      // Exact distances nearest-bound first; a pair whose bound is no less than the best
-      // distance so far cannot lower it (the result equals measuring every candidate).
-      std::sort(dd.candidates.begin(), dd.candidates.end(),
-                [](const Candidate& x, const Candidate& y) { return x.bound < y.bound; });
-      const std::pair<int, int> seeded{dd.a, dd.b};
-      for (const Candidate& c : dd.candidates) {
-        if (c.bound >= dd.best) break;
-        if ((c.i == seeded.first && c.j == seeded.second) ||
-            (c.j == seeded.first && c.i == seeded.second)) {
-          continue;  // measured above
-        }
-        fcl::DistanceRequestd req;
-        fcl::DistanceResultd res;
-        fcl::distance(bodies_[static_cast<std::size_t>(c.i)].object.get(),
-                      bodies_[static_cast<std::size_t>(c.j)].object.get(), req, res);
-        if (!std::isfinite(res.min_distance)) {
-          result.error = "FCL distance query failed for " +
-                         bodies_[static_cast<std::size_t>(c.i)].name + "|" +
-                         bodies_[static_cast<std::size_t>(c.j)].name;
-          break;
-        }
-        const double v = std::max(0.0, res.min_distance);
-        if (v < dd.best) {
-          dd.best = v;
-          dd.a = c.i;
-          dd.b = c.j;
-        }
-        if (dd.best <= 0.0) break;
-      }
-      candidates_.swap(dd.candidates);
-      last_nearest_ = {dd.a, dd.b};
-      result.min_clearance_m = dd.best;
-      if (dd.a >= 0) {
-        result.min_clearance_pair = bodies_[static_cast<std::size_t>(dd.a)].name + "|" +
-                                    bodies_[static_cast<std::size_t>(dd.b)].name;
-      }
+      Clearance(cutoff, result);
     }
   }
-  Cached entry{q, options.compute_clearance, options.clearance_cutoff_m, result};
+  Cached entry{key, q, options.compute_clearance, options.clearance_cutoff_m, result};
   if (cache_.size() < kCacheSize) {
     cache_.push_back(std::move(entry));
     cache_next_ = cache_.size() % kCacheSize;
@@ -751,6 +650,57 @@ CollisionResult FclWorld::Check(const JointVector& q, const CollisionOptions& op
     cache_next_ = (cache_next_ + 1) % kCacheSize;
   }
   return result;
+}
+
+void FclWorld::Clearance(double cutoff, CollisionResult& result) {
+  double best = cutoff;
+  int best_i = -1, best_j = -1;
+  // Measures pair (i, j) exactly; false (and result.error) if FCL fails on it.
+  auto measure = [&](int i, int j) {
+    fcl::DistanceRequestd req;
+    fcl::DistanceResultd res;
+    fcl::distance(bodies_[static_cast<std::size_t>(i)].object.get(),
+                  bodies_[static_cast<std::size_t>(j)].object.get(), req, res);
+    if (!std::isfinite(res.min_distance)) {
+      result.error = "FCL distance query failed for " + bodies_[static_cast<std::size_t>(i)].name +
+                     "|" + bodies_[static_cast<std::size_t>(j)].name;
+      return false;
+    }
+    if (std::max(0.0, res.min_distance) < best) {
+      best = std::max(0.0, res.min_distance);
+      best_i = i;
+      best_j = j;
+    }
+    return true;
+  };
+  // The pair nearest at the previous query first: a true clearance, after which far fewer
+  // pairs pass the bounds.
+  const std::pair<int, int> seeded = last_nearest_;
+  if (seeded.first >= 0 && !measure(seeded.first, seeded.second)) return;
+  // Candidates: world boxes closer than the best so far, then an oriented-box lower bound.
+  candidates_.clear();
+  ForEachPair([&](int i, int j) {
+    const auto a = static_cast<std::size_t>(i), b = static_cast<std::size_t>(j);
+    if (!Checked(i, j) || box_[a].distance(box_[b]) >= best) return;
+    const double lb = ObbGapLowerBound(obb_[a], obb_[b], best);
+    if (lb < best) candidates_.push_back({lb, i, j});
+  });
+  // Exact distances nearest-bound first; a pair whose bound is no less than the best distance
+  // so far cannot lower it (the result equals measuring every candidate).
+  std::sort(candidates_.begin(), candidates_.end(),
+            [](const Candidate& x, const Candidate& y) { return x.bound < y.bound; });
+  for (const Candidate& c : candidates_) {
+    if (c.bound >= best || best <= 0.0) break;
+    const bool is_seed = (c.i == seeded.first && c.j == seeded.second) ||
+                         (c.j == seeded.first && c.i == seeded.second);
+    if (!is_seed && !measure(c.i, c.j)) return;
+  }
+  last_nearest_ = {best_i, best_j};
+  result.min_clearance_m = best;
+  if (best_i >= 0) {
+    result.min_clearance_pair = bodies_[static_cast<std::size_t>(best_i)].name + "|" +
+                                bodies_[static_cast<std::size_t>(best_j)].name;
+  }
 }
 
 // The benchmark baseline: objects rebuilt from scratch and every checked pair queried.
