@@ -90,14 +90,17 @@ class RowStepper {
   double pitch_;
 };
 
-// Height of a constraint's top above the surface: the largest over its corners (box) or
-// vertices (mesh) of z minus the surface height at that (x, y), clamped into the domain.
-double HeightAboveSurface(const scene::Constraint& c, const geom::Surface& s) {
+// Height of a point above a height-field surface: z minus the surface height at its (x, y),
+// clamped into the domain.
+double Above(const geom::Surface& s, const Eigen::Vector3d& p) {
   const geom::Domain2 dom = s.Domain();
-  auto above = [&](const Eigen::Vector3d& p) {
-    const Eigen::Vector2d uv = p.head<2>().cwiseMax(dom.min).cwiseMin(dom.max);
-    return p.z() - s.Point(uv).z();
-  };
+  return p.z() - s.Point(p.head<2>().cwiseMax(dom.min).cwiseMin(dom.max)).z();
+}
+
+// Height of a constraint's top above the surface: the largest over its corners (box) or
+// vertices (mesh).
+double HeightAboveSurface(const scene::Constraint& c, const geom::Surface& s) {
+  auto above = [&](const Eigen::Vector3d& p) { return Above(s, p); };
   double h = 0.0;
   if (c.shape == scene::Constraint::Shape::kMesh) {
     for (const auto& v : c.mesh.vertices) h = std::max(h, above(v));
@@ -110,6 +113,25 @@ double HeightAboveSurface(const scene::Constraint& c, const geom::Surface& s) {
     h = std::max(h, above(c.pose_mm * corner));
   }
   return h;
+}
+
+// How far to lift along the normals na (at a) and nb (at b) so that the straight flight
+// between the lifted points stays at least `clear` above the surface (sampled every 20 mm):
+// `clear` itself unless the flight crosses a crown (a move between bays on a cambered skin).
+double FlightLift(const geom::Surface& s, const Eigen::Vector3d& a, const Eigen::Vector3d& na,
+                  const Eigen::Vector3d& b, const Eigen::Vector3d& nb, double clear) {
+  double lift = clear;
+  for (int it = 0; it < 8; ++it) {
+    const Eigen::Vector3d from = a + lift * na, to = b + lift * nb;
+    const int n = std::max(2, static_cast<int>((to - from).norm() / 20.0) + 1);
+    double deficit = 0.0;
+    for (int k = 0; k <= n; ++k) {
+      deficit = std::max(deficit, clear - Above(s, from + (to - from) * (double(k) / n)));
+    }
+    if (deficit <= 1e-6) break;
+    lift += deficit + 1.0;
+  }
+  return lift;
 }
 
 std::string Num(double v) {
@@ -424,8 +446,8 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
     }
     tallest_mm = std::max(tallest_mm, h);
   }
-  // A jump or a move between bays is flown this high above the surface (constraint tops plus
-  // the clearance the collision.clearance rule asks for, plus a safety allowance).
+  // A jump or a move between bays is flown at least this high above the surface: the
+  // tallest constraint plus RasterOptions::lift_clearance_mm.
   const double lift_clear_mm = tallest_mm + o.lift_clearance_mm;
   const RowStepper stepper(surface, o.pitch_mm);
   std::vector<Region> regions = o.strategy == RasterStrategy::kJump
@@ -542,22 +564,9 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
       m_line({dialect.m.head_retract});
       ++sum.jumps;
       sum.traverse_s += kRetractLowerS;
-      // Up along the normals, across, down: high enough that the straight transit keeps
-      // `lift_clear_mm` over the surface all the way (a bay move may cross the crown).
+      // Up along the normals, across, down.
       const Eigen::Vector3d na = pose_words.Rotation().col(2), nb = r.col(2);
-      double lift = lift_clear_mm;
-      for (int it = 0; it < 8; ++it) {
-        const Eigen::Vector3d a = pos + lift * na, c = to + lift * nb;
-        double deficit = 0.0;
-        const int n = std::max(2, static_cast<int>((c - a).norm() / 20.0) + 1);
-        for (int k = 0; k <= n; ++k) {
-          const Eigen::Vector3d p = a + (c - a) * (static_cast<double>(k) / n);
-          const Eigen::Vector2d uv = p.head<2>().cwiseMax(dom.min).cwiseMin(dom.max);
-          deficit = std::max(deficit, lift_clear_mm - (p.z() - surface.Point(uv).z()));
-        }
-        if (deficit <= 1e-6) break;
-        lift += deficit + 1.0;
-      }
+      const double lift = FlightLift(surface, pos, na, to, nb, lift_clear_mm);
       const Eigen::Vector3d up = pos + lift * na, over = to + lift * nb;
       rapid(up, pose_words.Rotation());
       quarter_turn_at(up);
