@@ -8,6 +8,18 @@
 #include "yaml_reader.h"
 
 namespace stitchsim::scene {
+namespace {
+
+// The required number `map[key]`, > 0 (>= 0 with allow_zero), into `out`; a missing or bad
+// value is reported (and the spec then fails to load).
+void ReadPositive(detail::YamlReader& r, const YAML::Node& map, std::string_view key, double& out,
+                  bool allow_zero = false) {
+  if (auto n = r.Child(map, key, true)) {
+    if (auto v = r.Number(*n, key); v && r.Positive(*n, *v, key, allow_zero)) out = *v;
+  }
+}
+
+}  // namespace
 
 std::filesystem::path ResolveHeadFile(const std::string& name_or_path,
                                       const std::filesystem::path& relative_to) {
@@ -112,9 +124,7 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
                 "stitch");
     auto& s = h.stitch;
     auto num = [&](std::string_view key, double& out, bool allow_zero) {
-      if (auto n = r.Child(*st, key, true)) {
-        if (auto v = r.Number(*n, key); v && r.Positive(*n, *v, key, allow_zero)) out = *v;
-      }
+      ReadPositive(r, *st, key, out, allow_zero);
     };
     num("nominal_length_mm", s.nominal_length_mm, false);
     num("width_mm", s.width_mm, true);
@@ -140,11 +150,7 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
                 {"tows", "tow_width_mm", "roller_radius_mm", "min_steering_radius_mm",
                  "layup_speed_mm_s", "rapid_speed_mm_s"},
                 "afp");
-    auto num = [&](std::string_view key, double& out) {
-      if (auto n = r.Child(*af, key, true)) {
-        if (auto v = r.Number(*n, key); v && r.Positive(*n, *v, key)) out = *v;
-      }
-    };
+    auto num = [&](std::string_view key, double& out) { ReadPositive(r, *af, key, out); };
     double tows = 16;
     num("tows", tows);
     h.afp.tows = static_cast<int>(tows);
@@ -157,19 +163,9 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
   if (auto env = r.Child(*root, "envelope", false); env && r.ExpectMap(*env, "envelope")) {
     r.CheckKeys(*env, {"height_mm", "radius_mm"}, "envelope");
     HeadEnvelope e;
-    bool ok = true;
-    for (auto [key, out] : {std::pair<const char*, double*>{"height_mm", &e.height_mm},
-                            std::pair<const char*, double*>{"radius_mm", &e.radius_mm}}) {
-      ok = false;
-      if (auto n = r.Child(*env, key, true)) {
-        if (auto v = r.Number(*n, key); v && r.Positive(*n, *v, key)) {
-          *out = *v;
-          ok = true;
-        }
-      }
-      if (!ok) break;
-    }
-    if (ok) h.envelope = e;
+    ReadPositive(r, *env, "height_mm", e.height_mm);
+    ReadPositive(r, *env, "radius_mm", e.radius_mm);
+    h.envelope = e;
   }
   if (auto lim = r.Child(*root, "limits", false); lim && r.ExpectMap(*lim, "limits")) {
     for (const auto& rule : *lim) {

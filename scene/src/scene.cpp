@@ -522,7 +522,11 @@ class SceneLoader {
     r_.CheckKeys(*n, {"pitch", "row_spacing", "margin"}, "raster");
     scene.raster.pitch_mm = LengthKey(*n, "pitch", false, true);
     scene.raster.row_spacing_mm = LengthKey(*n, "row_spacing", false, true);
-    scene.raster.margin_mm = LengthKey(*n, "margin", false, false);
+    if (auto m = r_.Child(*n, "margin", false)) {
+      auto v = r_.Length(*m, unit_, "raster.margin");
+      if (v && r_.Positive(*m, *v, "raster.margin", /*allow_zero=*/true))
+        scene.raster.margin_mm = v;
+    }
   }
 
   void ReadRail(const YAML::Node& root, Scene& scene) {

@@ -3,9 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+
+#include "stitchsim/common/files.h"
 
 namespace stitchsim::scene {
 namespace {
@@ -187,6 +190,11 @@ INSTANTIATE_TEST_SUITE_P(
                    "surface: {type: plane, size: [100, 100]}\n"
                    "paths: [{name: a, type: line, from: [0, 0], to: [20, 0]}]\n",
                    "scene-type", 5},
+        BrokenCase{"negative_raster_margin",
+                   "part: {mount: table}\nsurface: {type: plane, size: [100, 100]}\n"
+                   "raster:\n  row_spacing: 4\n  margin: -1\n"
+                   "paths: [{name: a, type: line, from: [0, 0], to: [20, 0]}]\n",
+                   "scene-out-of-range", 9},
         BrokenCase{"bad_surface_type",
                    "part: {mount: table}\nsurface: {type: torus}\n"
                    "paths: [{name: a, type: line, from: [0, 0], to: [20, 0]}]\n",
@@ -223,6 +231,34 @@ TEST(Scene, BrokenHeadSpecPointsIntoTheHeadFile) {
   EXPECT_EQ(sink.Diagnostics().front().location.file, head.string());
   EXPECT_EQ(sink.Diagnostics().front().code, "head-bad-value");
   EXPECT_EQ(sink.Diagnostics().front().location.line, 3);
+}
+
+// The head envelope: both keys required and positive, reported in the head file; the
+// bundled RS535 spec gives one.
+TEST(Scene, HeadEnvelopeIsReadAndChecked) {
+  DiagnosticSink ok_sink;
+  const auto rs535 = LoadHeadSpec(ResolveHeadFile("rs535", {}), ok_sink);
+  ASSERT_TRUE(rs535.has_value());
+  ASSERT_TRUE(rs535->envelope.has_value());
+  EXPECT_EQ(rs535->envelope->height_mm, 60.0);
+  EXPECT_EQ(rs535->envelope->radius_mm, 44.0);
+  std::string text = ReadFile(ResolveHeadFile("rs535", {})).value();
+  const std::string good = "envelope: {height_mm: 60, radius_mm: 44}";
+  const auto at = text.find(good);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, good.size(), "envelope: {height_mm: 60, radius_mm: -4}");
+  const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
+  // The copy lives in the temp folder: its mjcf path made absolute (same line count).
+  const std::string mjcf = "mjcf: rs535.xml";
+  const auto m = text.find(mjcf);
+  ASSERT_NE(m, std::string::npos);
+  text.replace(m, mjcf.size(), "mjcf: " + rs535->mjcf.string());
+  const auto copy = WriteTemp("envelope_head.yaml", text);
+  DiagnosticSink sink;
+  EXPECT_FALSE(LoadHeadSpec(copy, sink).has_value());
+  ASSERT_TRUE(sink.HasErrors());
+  EXPECT_EQ(sink.Diagnostics().front().code, "head-out-of-range");
+  EXPECT_EQ(sink.Diagnostics().front().location.line, line);
 }
 
 }  // namespace
