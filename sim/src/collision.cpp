@@ -455,8 +455,7 @@ bool FclWorld::Build(const scene::Scene& scene, DiagnosticSink& sink) {
     }
   }
 
-  // FCL objects, registered once; robot and environment in separate trees.
-  ForwardKinematics(robot_, HomeJoints(robot_, 0.0), frames_);
+  // FCL objects, created once; robot bodies and the fixed and moving environment listed apart.
   for (int i = 0; i < n_; ++i) {
     Body& b = bodies_[static_cast<std::size_t>(i)];
     b.object = std::make_unique<fcl::CollisionObjectd>(b.geometry, fcl::Transform3d::Identity());
@@ -473,14 +472,10 @@ bool FclWorld::Build(const scene::Scene& scene, DiagnosticSink& sink) {
       }
     }
   }
-  Place(HomeJoints(robot_, 0.0));
-  near_.assign(robot_bodies_.size(), NearSet{});
   obb_.resize(static_cast<std::size_t>(n_));
   box_.resize(static_cast<std::size_t>(n_));
-  for (int i = 0; i < n_; ++i)
-    box_[static_cast<std::size_t>(i)] = BoxOf(ObbOf(bodies_[static_cast<std::size_t>(i)]));
-  for (int i = 0; i < n_; ++i)
-    obb_[static_cast<std::size_t>(i)] = ObbOf(bodies_[static_cast<std::size_t>(i)]);
+  near_.assign(robot_bodies_.size(), NearSet{});
+  Place(HomeJoints(robot_, 0.0));
 
   // MaxPointTravel coefficients: for each robot rigid group, the reach from each joint it
   // hangs on to its farthest point (chain of link offsets + bounding sphere), q-independent.
@@ -545,11 +540,9 @@ void FclWorld::Place(const JointVector& q) {
     const Eigen::Isometry3d frame =
         b.group == Group::kPart ? part : frames_.world_pose[static_cast<std::size_t>(b.link)];
     b.object->setTransform(ToFcl(frame * b.local));
-    if (!obb_.empty()) {
-      const std::size_t i = static_cast<std::size_t>(&b - bodies_.data());
-      obb_[i] = ObbOf(b);
-      box_[i] = BoxOf(obb_[i]);
-    }
+    const std::size_t i = static_cast<std::size_t>(&b - bodies_.data());
+    obb_[i] = ObbOf(b);
+    box_[i] = BoxOf(obb_[i]);
   }
   placed_ = true;
 }
