@@ -11,9 +11,10 @@ namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
-// Point of needle `n` at tool-frame height z (on its axis).
+// Point of needle `n` on its axis at tool-frame height z_mm (the preform lies at tool z in
+// [0, thickness], between the stitching surface and the head).
 Eigen::Vector3d ShaftPoint(const scene::NeedleSpec& n, double z_mm) {
-  return n.through_mm + n.direction * (-z_mm / n.direction.z());
+  return n.through_mm + n.direction * ((z_mm - n.through_mm.z()) / n.direction.z());
 }
 
 double Limit(const scene::RuleLimits& limits, const std::string& rule, const std::string& key,
