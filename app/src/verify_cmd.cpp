@@ -13,6 +13,7 @@
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/process/stitch_cycle.h"
 #include "stitchsim/program/dialect.h"
+#include "stitchsim/program/identity.h"
 #include "stitchsim/sim/executor.h"
 #include "stitchsim/verify/verifier.h"
 
@@ -27,7 +28,29 @@ struct VerifyArgs {
   std::string junit;
   std::string snapshots;
   bool no_collision = false;
+  bool allow_mismatch = false;
 };
+
+// The programme's header against the scene it is verified on: a programme written for
+// another scene or head is bad input (both names given), unless overridden on purpose.
+bool HeaderFitsScene(const program::ProgramIdentity& id, const program::ProgramHeader& header,
+                     const std::string& program_file, const scene::Scene& scene,
+                     const std::string& scene_file, DiagnosticSink& sink) {
+  bool ok = true;
+  if (id.scene && *id.scene != scene.name) {
+    sink.Error("program-scene-mismatch", {program_file, header.LineOf("scene"), 1},
+               "the programme was written for scene '" + *id.scene + "' but " + scene_file +
+                   " is scene '" + scene.name + "'; --allow-mismatch verifies it anyway");
+    ok = false;
+  }
+  if (id.head && *id.head != scene.head.name) {
+    sink.Error("program-head-mismatch", {program_file, header.LineOf("head"), 1},
+               "the programme was written for head '" + *id.head + "' but scene '" + scene.name +
+                   "' mounts '" + scene.head.name + "'; --allow-mismatch verifies it anyway");
+    ok = false;
+  }
+  return ok;
+}
 
 // Passes the trace on and shows progress on a terminal.
 class ProgressSink : public sim::TraceSink {
@@ -137,14 +160,23 @@ int RunVerify(const VerifyArgs& a) {
   const std::optional<program::Dialect> custom = DialectOption(a.dialect);
   if (!custom) return kExitBadInput;
   const program::Dialect& dialect = *custom;
-  std::ifstream probe(a.program, std::ios::binary);
-  if (!probe) {
+  // The programme is read once, front to back (a pipe works): the header first, then the run.
+  std::ifstream in(a.program, std::ios::binary);
+  if (!in) {
     PrintError("io-missing-file", "cannot open programme " + a.program);
     return kExitBadInput;
   }
-  const double stitch_length =
-      sim::DeclaredStitchLength(probe, dialect).value_or(ls->scene->nominal_stitch_length_mm);
-  std::ifstream in(a.program, std::ios::binary);
+  BoundedDiagnosticSink diagnostics(100);
+  sim::ProgramInput input(in, dialect, a.program, diagnostics);
+  const program::ProgramHeader& header = input.Header();
+  const std::optional<program::ProgramIdentity> id =
+      program::ReadIdentity(header, a.program, diagnostics);
+  if (!id || (!a.allow_mismatch &&
+              !HeaderFitsScene(*id, header, a.program, *ls->scene, a.scene, diagnostics))) {
+    PrintDiagnostics(diagnostics);
+    return kExitBadInput;
+  }
+  const double stitch_length = id->stitch_length_mm.value_or(ls->scene->nominal_stitch_length_mm);
   const sim::CellSetup cell = sim::MakeCellSetup(*ls->robot, *ls->scene);
   const process::ProcessModel model = process::MakeProcessModel(*ls->scene, stitch_length);
   std::unique_ptr<sim::CollisionWorld> collision;
@@ -154,13 +186,14 @@ int RunVerify(const VerifyArgs& a) {
     if (PrintDiagnostics(world_diagnostics) || !collision) return kExitBadInput;
   }
   verify::RuleContext ctx{ls->scene.get(), ls->robot.get(), &model, collision.get()};
+  ctx.declared_stitches = id->stitches;
   sim::ExecuteOptions execute_options = sim::ExecuteOptionsFor(*ls->scene);
   execute_options.collision = collision.get();
+  execute_options.allow_head_mismatch = a.allow_mismatch;
   verify::Verifier verifier(ctx, !a.snapshots.empty());
   ProgressSink progress(verifier, ::isatty(2) != 0);
-  BoundedDiagnosticSink diagnostics(100);
-  const sim::ExecutionSummary run = sim::ExecuteProgram(cell, model, dialect, in, a.program,
-                                                        execute_options, diagnostics, progress);
+  const sim::ExecutionSummary run =
+      sim::ExecuteProgram(cell, model, input, execute_options, diagnostics, progress);
   progress.Done();
   if (PrintDiagnostics(diagnostics) || !run.ok) return kExitBadInput;
 
@@ -222,6 +255,9 @@ void AddVerifyCommand(CLI::App& app, int& exit_code) {
                   "Write overview.png and <rule>.png close-ups into this folder");
   cmd->add_flag("--no-collision", args->no_collision,
                 "Skip the FCL collision checks (collision.* rules)");
+  cmd->add_flag("--allow-mismatch", args->allow_mismatch,
+                "Verify a programme whose header names another scene or head, or that mounts "
+                "another head (T.. M6), on this scene's cell anyway");
   cmd->callback([args, &exit_code] { exit_code = RunVerify(*args); });
 }
 

@@ -26,6 +26,13 @@ std::optional<std::string_view> ProgramHeader::Find(std::string_view key) const 
   return std::nullopt;
 }
 
+int ProgramHeader::LineOf(std::string_view key) const {
+  for (std::size_t i = 0; i < entries.size() && i < lines.size(); ++i) {
+    if (entries[i].first == key) return lines[i];
+  }
+  return 0;
+}
+
 namespace {
 
 constexpr std::size_t kChunkSize = std::size_t{1} << 20;
@@ -523,6 +530,7 @@ struct ProgramReader::Impl {
         return false;
       }
       header.entries.emplace_back(std::string(key), std::string(entry.substr(eq + 1)));
+      header.lines.push_back(line_number);
       k = e;
     }
     return true;
@@ -645,15 +653,19 @@ struct ProgramReader::Impl {
       }
       b.Clear();
       b.source_line = line_number;
-      if (ParseLine(line, b) == LineKind::kBlock) return true;
+      const LineKind kind = ParseLine(line, b);
+      if (kind != LineKind::kBlank) last_content_line = line_number;
+      if (kind == LineKind::kBlock) return true;
     }
     done = true;
     if (!any_words) {
       sink.Error(codes::kEmptyProgram, {file_name, had_opening ? opening_line : 1, 1},
                  "the programme has no blocks");
     } else if (had_opening && phase != Phase::kEnded) {
-      sink.Error(codes::kMissingEnd, {file_name, opening_line, 1},
-                 "the '%' that opens the programme here has no closing '%'");
+      // Where the text stops is where a cut-short programme went wrong.
+      sink.Error(codes::kMissingEnd, {file_name, last_content_line, 1},
+                 "the programme stops here without the closing '%' of the '%' on line " +
+                     std::to_string(opening_line) + " (cut short?)");
     }
     b.Clear();
     return false;
@@ -676,7 +688,10 @@ struct ProgramReader::Impl {
   Phase phase = Phase::kBeforeStart;
   bool had_opening = false;
   int opening_line = 0;
+  int last_content_line = 0;  // last line that was not blank
   bool any_words = false;
+  bool header_read = false;
+  std::optional<Block> pending;  // the first word block, held back by ReadHeader
   bool done = false;
   ProgramHeader header;
 };
@@ -687,7 +702,29 @@ ProgramReader::ProgramReader(std::istream& in, const Dialect& dialect, std::stri
 
 ProgramReader::~ProgramReader() = default;
 
-bool ProgramReader::Next(Block& block) { return impl_->Next(block); }
+bool ProgramReader::Next(Block& block) {
+  if (impl_->pending) {
+    block = std::move(*impl_->pending);
+    impl_->pending.reset();
+    return true;
+  }
+  return impl_->Next(block);
+}
+
+const ProgramHeader& ProgramReader::ReadHeader() {
+  Impl& d = *impl_;
+  if (!d.header_read) {
+    d.header_read = true;
+    Block b;
+    while (d.Next(b)) {
+      if (b.HasWords()) {
+        d.pending = std::move(b);
+        break;
+      }
+    }
+  }
+  return d.header;
+}
 const ProgramHeader& ProgramReader::Header() const { return impl_->header; }
 int ProgramReader::LineCount() const { return impl_->line_number; }
 std::uint64_t ProgramReader::BytesRead() const { return impl_->bytes_read; }

@@ -424,6 +424,7 @@ std::optional<JointVector> ChooseStartBranch(const CellSetup& cell, const progra
 
 ExecuteOptions ExecuteOptionsFor(const scene::Scene& scene) {
   ExecuteOptions o;
+  o.mounted_head = scene.head.name;
   if (scene.head.IsStitching()) {
     o.rapid_speed_mm_s = scene.head.stitch.rapid_speed_mm_s;
     o.rotation_speed_rad_s = scene.head.stitch.rotation_speed_deg_s * kDeg;
@@ -435,21 +436,69 @@ ExecuteOptions ExecuteOptionsFor(const scene::Scene& scene) {
   return o;
 }
 
+ProgramInput::ProgramInput(std::istream& in, const program::Dialect& dialect, std::string file_name,
+                           DiagnosticSink& diagnostics)
+    : in_(in),
+      origin_(in.tellg()),
+      dialect_(dialect),
+      file_name_(std::move(file_name)),
+      reader_(in, dialect, file_name_, diagnostics) {}
+
+namespace {
+
+// The start branch from a look-ahead over the whole programme, when the input can seek: back
+// to the start, through to the end, then back to where the reader stands.
+std::optional<JointVector> LookAhead(const CellSetup& cell, std::istream& in, std::streampos origin,
+                                     const program::Dialect& dialect,
+                                     const std::string& file_name) {
+  if (origin == std::streampos(-1)) return std::nullopt;
+  in.clear();
+  const std::streampos resume = in.tellg();
+  if (resume == std::streampos(-1) || !in.seekg(origin)) {
+    in.clear();
+    return std::nullopt;
+  }
+  std::optional<JointVector> start = ChooseStartBranch(cell, dialect, in, file_name);
+  in.clear();
+  in.seekg(resume);
+  return start;
+}
+
+// `T<n> M6` must mount the cell's head.
+bool HeadMatches(const program::Dialect& dialect, const program::MachineState& st,
+                 const program::Block& block, const ExecuteOptions& options,
+                 const std::string& file_name, DiagnosticSink& diagnostics) {
+  if (options.mounted_head.empty() || options.allow_head_mismatch || !st.active_tool) return true;
+  const program::ToolEntry* tool = dialect.FindTool(*st.active_tool);
+  if (tool == nullptr || tool->head == options.mounted_head) return true;
+  diagnostics.Error("exec-head-mismatch", {file_name, block.source_line, 1},
+                    "T" + std::to_string(*st.active_tool) + " M6 mounts head '" + tool->head +
+                        "', but the cell carries '" + options.mounted_head +
+                        "' (the scene's head); --allow-mismatch verifies it anyway");
+  return false;
+}
+
+}  // namespace
+
 ExecutionSummary ExecuteProgram(const CellSetup& cell, const process::ProcessModel& process,
                                 const program::Dialect& dialect, std::istream& in,
                                 const std::string& file_name, const ExecuteOptions& options,
                                 DiagnosticSink& diagnostics, TraceSink& sink) {
+  ProgramInput input(in, dialect, file_name, diagnostics);
+  return ExecuteProgram(cell, process, input, options, diagnostics, sink);
+}
+
+ExecutionSummary ExecuteProgram(const CellSetup& cell, const process::ProcessModel& process,
+                                ProgramInput& input, const ExecuteOptions& options,
+                                DiagnosticSink& diagnostics, TraceSink& sink) {
+  const program::Dialect& dialect = input.dialect_;
+  const std::string& file_name = input.file_name_;
+  program::ProgramReader& reader = input.reader_;
   ExecutionSummary summary;
   std::optional<JointVector> start;
   if (options.choose_start_branch) {
-    const auto origin = in.tellg();
-    if (origin != std::streampos(-1)) {
-      start = ChooseStartBranch(cell, dialect, in, file_name);
-      in.clear();
-      in.seekg(origin);
-    }
+    start = LookAhead(cell, input.in_, input.origin_, dialect, file_name);
   }
-  program::ProgramReader reader(in, dialect, file_name, diagnostics);
   program::ModalState state(dialect, file_name, diagnostics);
   Executor exec(cell, process, dialect, options, sink);
   if (start) exec.SeedJoints(*start);
@@ -458,6 +507,10 @@ ExecutionSummary ExecuteProgram(const CellSetup& cell, const process::ProcessMod
   while (reader.Next(block)) {
     const program::Step& step = state.Update(block);
     if (diagnostics.ErrorCount() > errors_before) break;
+    if (step.tool_changed &&
+        !HeadMatches(dialect, state.State(), block, options, file_name, diagnostics)) {
+      break;
+    }
     if (!step.is_move) continue;
     const auto& st = state.State();
     for (Axis a : {Axis::kX, Axis::kY, Axis::kZ, Axis::kA, Axis::kB, Axis::kC}) {
@@ -483,28 +536,17 @@ ExecutionSummary ExecuteProgram(const CellSetup& cell, const process::ProcessMod
   while (diagnostics.ErrorCount() == errors_before && reader.Next(block)) {
     state.Update(block);
   }
+  if (diagnostics.ErrorCount() == errors_before && options.require_program_end &&
+      !state.State().program_ended) {
+    diagnostics.Error("exec-missing-program-end", {file_name, reader.LineCount(), 1},
+                      "the programme stops here without its end (M" +
+                          std::to_string(dialect.m.program_end) + "): cut short?");
+  }
   summary.lines = reader.LineCount();
   summary.header = reader.Header();
   summary.time_s = exec.Time();
   summary.ok = diagnostics.ErrorCount() == errors_before;
   return summary;
-}
-
-std::optional<double> DeclaredStitchLength(std::istream& in, const program::Dialect& dialect) {
-  BoundedDiagnosticSink ignored(8);
-  program::ProgramReader reader(in, dialect, "header", ignored);
-  program::Block block;
-  while (reader.Next(block)) {
-    if (block.HasAxisWords()) break;
-  }
-  const auto v = reader.Header().Find("stitch_length_mm");
-  if (!v) return std::nullopt;
-  double x = 0.0;
-  const auto [p, ec] = std::from_chars(v->data(), v->data() + v->size(), x);
-  if (ec != std::errc() || p != v->data() + v->size() || !(x > 0) || !std::isfinite(x)) {
-    return std::nullopt;
-  }
-  return x;
 }
 
 }  // namespace stitchsim::sim

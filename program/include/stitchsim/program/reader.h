@@ -21,11 +21,18 @@ namespace stitchsim::program {
 /// e.g. scene, head, stitch_length_mm, mode. Values are text; callers convert them.
 struct ProgramHeader {
   std::vector<std::pair<std::string, std::string>> entries;  // in written order
+  /// 1-based source line of each entry, parallel to `entries` (filled by the reader; empty
+  /// for a header built in code). Not part of equality.
+  std::vector<int> lines;
 
   /// The value for `key`, or nullopt.
   std::optional<std::string_view> Find(std::string_view key) const;
+  /// The source line of `key`'s entry, or 0 when unknown.
+  int LineOf(std::string_view key) const;
   bool empty() const { return entries.empty(); }
-  friend bool operator==(const ProgramHeader&, const ProgramHeader&) = default;
+  friend bool operator==(const ProgramHeader& a, const ProgramHeader& b) {
+    return a.entries == b.entries;
+  }
 };
 
 /// Reads blocks from a stream. Lines with an error are reported and skipped; blank lines and
@@ -44,6 +51,10 @@ class ProgramReader {
 
   /// Header entries seen so far (complete once the first word block has been returned).
   const ProgramHeader& Header() const;
+  /// Reads up to the first block with words and returns the complete header; that block is
+  /// kept and is the next one Next() returns (the comment-only lines before it are consumed),
+  /// so a programme is read once even when its header decides how to run it.
+  const ProgramHeader& ReadHeader();
   /// Lines read so far (1-based number of the last line read).
   int LineCount() const;
   /// Bytes consumed from the stream so far.

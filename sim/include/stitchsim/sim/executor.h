@@ -43,6 +43,14 @@ struct ExecuteOptions {
   double collision_min_clearance_m = 0.0005;
   /// Cap on the extra samples per line (keeps a pathological line finite).
   int collision_max_extra_samples = 4000;
+  /// The head mounted on the cell (the scene's). A tool change (`T<n> M6`) to a tool the
+  /// dialect maps to another head is `exec-head-mismatch`, unless `allow_head_mismatch`.
+  /// Empty: not checked.
+  std::string mounted_head;
+  bool allow_head_mismatch = false;
+  /// A programme that ends without the programme end code (M30) was cut short:
+  /// `exec-missing-program-end` at the last line read.
+  bool require_program_end = true;
 };
 
 ExecuteOptions ExecuteOptionsFor(const scene::Scene& scene);
@@ -56,20 +64,41 @@ struct ExecutionSummary {
   bool ok = false;  ///< no input errors (rule findings are the verifier's business)
 };
 
-/// Runs `in` through the parser, the modal state and the kinematics, sending every line and
-/// sample to `sink`. Input errors (malformed programme, incomplete pose, NaN) are reported
-/// to `diagnostics`; execution stops at the first error.
+/// A programme opened for execution and read once, front to back (a pipe works): its header
+/// can be read before the run (to check it and to size the process model), and the run goes
+/// on from there. Only the start-branch look-ahead reads a seekable input a second time.
+/// `in`, `dialect` and `diagnostics` must outlive it.
+class ProgramInput {
+ public:
+  ProgramInput(std::istream& in, const program::Dialect& dialect, std::string file_name,
+               DiagnosticSink& diagnostics);
+  /// The complete STITCHSIM header (reads up to the first block with words).
+  const program::ProgramHeader& Header() { return reader_.ReadHeader(); }
+  const std::string& FileName() const { return file_name_; }
+
+ private:
+  friend ExecutionSummary ExecuteProgram(const CellSetup&, const process::ProcessModel&,
+                                         ProgramInput&, const ExecuteOptions&, DiagnosticSink&,
+                                         TraceSink&);
+  std::istream& in_;
+  std::streampos origin_;  ///< where the programme starts; -1 when `in_` cannot seek
+  const program::Dialect& dialect_;
+  std::string file_name_;
+  program::ProgramReader reader_;
+};
+
+/// Runs the programme through the parser, the modal state and the kinematics, sending every
+/// line and sample to `sink`. Input errors (malformed programme, incomplete pose, NaN, a head
+/// the cell does not carry, no programme end) are reported to `diagnostics`, which must be
+/// the sink `input` reports to; execution stops at the first error.
+ExecutionSummary ExecuteProgram(const CellSetup& cell, const process::ProcessModel& process,
+                                ProgramInput& input, const ExecuteOptions& options,
+                                DiagnosticSink& diagnostics, TraceSink& sink);
+
+/// The same for a whole stream (tests, in-memory text).
 ExecutionSummary ExecuteProgram(const CellSetup& cell, const process::ProcessModel& process,
                                 const program::Dialect& dialect, std::istream& in,
                                 const std::string& file_name, const ExecuteOptions& options,
                                 DiagnosticSink& diagnostics, TraceSink& sink);
-
-}  // namespace stitchsim::sim
-
-namespace stitchsim::sim {
-
-/// The stitch length a programme declares in its header (`stitch_length_mm=`), read from
-/// the lines before its first move; nullopt if it declares none.
-std::optional<double> DeclaredStitchLength(std::istream& in, const program::Dialect& dialect);
 
 }  // namespace stitchsim::sim

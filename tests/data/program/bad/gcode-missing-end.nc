@@ -1,4 +1,4 @@
-; expect 2:1
+; expect 4:1
 %
 G21 G90
 M30

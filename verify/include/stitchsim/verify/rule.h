@@ -43,6 +43,9 @@ struct RuleContext {
   const process::ProcessModel* process = nullptr;
   /// The scene's collision world; the collision.* rules run only when it is set.
   sim::CollisionWorld* collision = nullptr;
+  /// The stitch count the programme's header declares (`stitches=N`), if it declares one:
+  /// program.stitch_count checks the run makes exactly that many.
+  std::optional<long> declared_stitches = std::nullopt;
 };
 
 class Rule {
