@@ -453,13 +453,12 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
   std::vector<Region> regions = o.strategy == RasterStrategy::kJump
                                     ? JumpRegions(fps, box, o.row_spacing_mm)
                                     : BayRegions(fps, box, o.row_spacing_mm);
-  // Regions to heads: contiguous runs of nearly equal stitch count.
+  // Stitches per region: the header declares the total (verify's program.stitch_count), and
+  // regions go to heads in contiguous runs of nearly equal stitch count.
   long total = 0;
-  if (working.size() > 1) {
-    for (Region& r : regions) {
-      for (const RowPiece& p : r.pieces) r.stitches += stepper.Count(p.u_begin, p.u_end, p.v);
-      total += r.stitches;
-    }
+  for (Region& r : regions) {
+    for (const RowPiece& p : r.pieces) r.stitches += stepper.Count(p.u_begin, p.u_end, p.v);
+    total += r.stitches;
   }
   std::vector<std::vector<std::size_t>> per_head(working.size());
   {
@@ -491,7 +490,8 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
                     {"raster", std::string(ToString(o.strategy))},
                     {"stitch_length_mm", Num(o.pitch_mm)},
                     {"row_spacing_mm", Num(o.row_spacing_mm)},
-                    {"heads", std::to_string(o.heads)}};
+                    {"heads", std::to_string(o.heads)},
+                    {"stitches", std::to_string(total)}};
   program::Block b;
   detail::WriteOpening(w, b, dialect, header, scene.head.tool_number);
   detail::PoseWords pose_words(dialect);
