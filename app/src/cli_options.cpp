@@ -8,10 +8,22 @@
 namespace stitchsim::app {
 namespace {
 
-// "[default unit mm; also 2.5mm, 0.1in, 1m]": how the help names a length option's units.
+std::string UnitWord(LengthUnit unit) {
+  switch (unit) {
+    case LengthUnit::kInch:
+      return "inches";
+    case LengthUnit::kMetre:
+      return "metres";
+    case LengthUnit::kMillimetre:
+      break;
+  }
+  return "millimetres";
+}
+
+// How the help names a length option's units: " (a bare number is in millimetres; ...)".
 std::string UnitHelp(LengthUnit default_unit) {
-  return " [a length: a bare number is " + std::string(UnitName(default_unit)) +
-         "; a unit suffix (2.5mm, 0.1in, 1m) is also read]";
+  return " (a bare number is in " + UnitWord(default_unit) +
+         "; a unit may follow: 2.5mm, 0.1in, 1m)";
 }
 
 double ReadLength(const std::string& name, const std::string& text, LengthUnit default_unit,

@@ -116,15 +116,16 @@ class StitchLengthRule final : public Rule {
         ctx_(ctx) {
     summary_.error_limit = LimitOf(ctx, summary_.id, "error_pct");
     summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_pct");
-    const std::optional<double> insertion_error = LimitOf(ctx, summary_.id, "insertion_error_pct");
-    const std::optional<double> insertion_warning =
-        LimitOf(ctx, summary_.id, "insertion_warning_pct");
-    // Each needle's figure beside its own limits.
-    for (const scene::NeedleSpec& n : ctx.process->needles) {
+    insertion_error_ = LimitOf(ctx, summary_.id, "insertion_error_pct");
+    insertion_warning_ = LimitOf(ctx, summary_.id, "insertion_warning_pct");
+    // With two or more needles, each needle's figure beside its own limits.
+    const auto& needles = ctx.process->needles;
+    for (const scene::NeedleSpec& n : needles) {
       const bool at_tool_point = n.through_mm.norm() < 1e-9;
       at_tool_point_.push_back(at_tool_point);
-      AddSubject(n.name, at_tool_point ? summary_.error_limit : insertion_error,
-                 at_tool_point ? summary_.warning_limit : insertion_warning);
+      if (needles.size() < 2) continue;
+      AddSubject(n.name, at_tool_point ? summary_.error_limit : insertion_error_,
+                 at_tool_point ? summary_.warning_limit : insertion_warning_);
     }
   }
   // A seam ends where stitching is switched off (M11) or the head retracts (M20): the
@@ -142,7 +143,7 @@ class StitchLengthRule final : public Rule {
         const double len = (*p.points[k] - *previous_->points[k]).norm();
         const double dev = std::abs(len - l) / l * 100.0;
         // Stitch k-1 ends where stitch k starts: report it on the earlier stitch.
-        ObserveSubject(k, dev, p.line, p.stitch - 1);
+        if (k < summary_.subjects.size()) ObserveSubject(k, dev, p.line, p.stitch - 1);
         const auto what = [&] {
           return needles[k].name + " needle stitch of " + Fmt("%.4g", len) + " mm: deviation";
         };
@@ -150,8 +151,8 @@ class StitchLengthRule final : public Rule {
           CheckUpper(dev, p.line, p.stitch - 1, needles[k].name, what, &p.sample);
           continue;
         }
-        const SubjectFigure& own = summary_.subjects[k];
-        const std::optional<double>* lim[2] = {&own.error_limit, &own.warning_limit};
+        // A needle off the tool point: its own (insertion) limits, if any.
+        const std::optional<double>* lim[2] = {&insertion_error_, &insertion_warning_};
         for (int s = 0; s < 2; ++s) {
           if (*lim[s] && dev > **lim[s]) {
             Record(s == 0 ? FindingSeverity::kError : FindingSeverity::kWarning, dev, **lim[s],
@@ -172,6 +173,7 @@ class StitchLengthRule final : public Rule {
   const RuleContext& ctx_;
   std::optional<PenetrationRecord> previous_;
   std::vector<bool> at_tool_point_;  ///< per needle: the rule's own limits apply
+  std::optional<double> insertion_error_, insertion_warning_;  ///< the other needles' limits
 };
 
 class StitchWidthRule final : public Rule {
