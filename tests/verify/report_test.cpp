@@ -22,8 +22,12 @@
 #include <utility>
 #include <vector>
 
+#include "report_test_support.h"
+
 namespace stitchsim::verify {
 namespace {
+
+using namespace report_test_support;  // NOLINT(google-build-using-namespace)
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
@@ -176,111 +180,6 @@ Report AwkwardReport() {
   report.errors = 3;
   report.warnings = 0;
   return report;
-}
-
-// A file in the temp folder, removed when the test ends.
-class TempFile {
- public:
-  explicit TempFile(const std::string& suffix) {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    static int counter = 0;
-    path_ = fs::temp_directory_path() /
-            ("stitchsim_report_test_" + std::string(info->name()) + "_" +
-             std::to_string(::getpid()) + "_" + std::to_string(counter++) + suffix);
-  }
-  ~TempFile() {
-    std::error_code ignored;
-    fs::remove(path_, ignored);
-  }
-  TempFile(const TempFile&) = delete;
-  TempFile& operator=(const TempFile&) = delete;
-
-  const fs::path& path() const { return path_; }
-  void Write(const std::string& contents) const {
-    std::ofstream out(path_, std::ios::binary);
-    out << contents;
-    ASSERT_TRUE(out.good()) << path_;
-  }
-  std::string Read() const {
-    std::ifstream in(path_, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-  }
-
- private:
-  fs::path path_;
-};
-
-// Runs `python3 script args...`; returns the exit code, or -1 if it did not exit normally.
-int RunPython(const std::string& script, const std::vector<std::string>& args) {
-  TempFile script_file(".py");
-  script_file.Write(script);
-  std::string command = "python3 '" + script_file.path().string() + "'";
-  for (const std::string& arg : args) command += " '" + arg + "'";
-  const int status = std::system(command.c_str());
-  return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-// Strict JSON (NaN / Infinity rejected, UTF-8 required), written back with sorted keys.
-constexpr const char* kPythonJsonCheck = R"py(
-import json, sys
-def reject(constant):
-    raise ValueError("not JSON: " + constant)
-with open(sys.argv[1], encoding="utf-8") as f:
-    data = json.load(f, parse_constant=reject)
-assert data["stitchsim_report"] == 1
-with open(sys.argv[2], "w", encoding="utf-8") as f:
-    json.dump(data, f, sort_keys=True, ensure_ascii=False)
-)py";
-
-// Parses the JUnit XML with ElementTree, checks the structure CI consumers rely on, and
-// writes the parsed tree as JSON for the C++ side to compare with the report.
-constexpr const char* kPythonJunitCheck = R"py(
-import json, sys
-import xml.etree.ElementTree as E
-root = E.parse(sys.argv[1]).getroot()
-assert root.tag == "testsuites", root.tag
-assert root.get("name") == "stitchsim"
-suites = list(root)
-assert len(suites) == 1 and suites[0].tag == "testsuite", suites
-suite = suites[0]
-assert [c.tag for c in suite][:1] == ["properties"], [c.tag for c in suite]
-cases = list(suite)[1:]
-assert all(c.tag == "testcase" for c in cases)
-assert int(root.get("tests")) == int(suite.get("tests")) == len(cases)
-failed = [c for c in cases if c.find("failure") is not None]
-assert int(root.get("failures")) == int(suite.get("failures")) == len(failed)
-skipped = [c for c in cases if c.find("skipped") is not None]
-assert int(root.get("skipped")) == int(suite.get("skipped")) == len(skipped)
-assert suite.get("errors") == "0"
-for c in cases:
-    assert c.get("classname") == suite.get("name")
-    assert c.get("name")
-    assert len(c.findall("failure")) <= 1
-    for f in c.findall("failure"):
-        assert f.get("message") and f.get("type") == c.get("name")
-def tree(e):
-    return {"tag": e.tag, "attrib": dict(e.attrib), "text": e.text or "",
-            "children": [tree(c) for c in e]}
-with open(sys.argv[2], "w", encoding="utf-8") as f:
-    json.dump(tree(root), f, ensure_ascii=False)
-)py";
-
-// The JUnit XML as parsed by Python, as a tree of {tag, attrib, text, children}.
-Json ParseJunitWithPython(const std::string& xml) {
-  TempFile in(".xml");
-  TempFile out(".json");
-  in.Write(xml);
-  EXPECT_EQ(RunPython(kPythonJunitCheck, {in.path().string(), out.path().string()}), 0) << xml;
-  return Json::parse(out.Read(), nullptr, /*allow_exceptions=*/false);
-}
-
-std::vector<std::string> SplitLines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
 }
 
 std::vector<std::string> Keys(const OrderedJson& object) {
@@ -474,13 +373,6 @@ TEST(report_json, EveryKeyIsDocumented) {
 // ---------------------------------------------------------------------------------------
 // JUnit
 
-const Json* FindCase(const Json& suite, const std::string& name) {
-  for (const Json& c : suite["children"]) {
-    if (c["attrib"]["name"] == name) return &c;
-  }
-  return nullptr;
-}
-
 TEST(report_junit, StructureAndCounts) {
   const std::string xml = ReportToJunit(FailingReport());
   EXPECT_EQ(xml.rfind("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites ", 0), 0u);
@@ -665,138 +557,6 @@ TEST(report_text, NarrowCleanAndValidUtf8) {
   EXPECT_NE(text.find("  line 9 stitch 3: xxxx"), std::string::npos);
   EXPECT_NE(text.find("xxx...\n"), std::string::npos) << "long message cut";
   EXPECT_NE(text.find("nan"), std::string::npos) << "NaN worst value shown";
-}
-
-// ---------------------------------------------------------------------------------------
-// n/a rules, per-subject figures and skipped rules (issue 10, items 14 and 15)
-
-// stitch.length with per-needle figures, a rule that checked nothing (a stale worst value
-// must not show), and the collision rules skipped.
-Report SubjectsReport() {
-  Report report = PassingReport();
-  RuleSummary length;
-  length.id = "stitch.length";
-  length.unit = "%";
-  length.checked = 254;
-  length.error_limit = 15.0;
-  length.warning_limit = 5.0;
-  length.worst_value = 0.25;
-  length.worst_line = 9;
-  length.worst_stitch = 2;
-  SubjectFigure catcher;
-  catcher.subject = "catcher";
-  catcher.checked = 254;
-  catcher.error_limit = 15.0;
-  catcher.warning_limit = 5.0;
-  catcher.worst_value = 0.25;
-  catcher.worst_line = 9;
-  catcher.worst_stitch = 2;
-  SubjectFigure insertion;
-  insertion.subject = "insertion";
-  insertion.checked = 254;
-  insertion.worst_value = 8.359;
-  insertion.worst_line = 11;
-  insertion.worst_stitch = 3;
-  length.subjects = {catcher, insertion};
-  RuleSummary idle;
-  idle.id = "program.sync";
-  idle.unit = "mm";
-  idle.checked = 0;
-  idle.error_limit = 0.01;
-  idle.worst_value = 4.96;  // must never be shown: the rule checked nothing
-  report.rules = {length, idle};
-  report.skipped = {{"collision.head_mold", "--no-collision"},
-                    {"collision.robot_cell", "--no-collision"},
-                    {"collision.clearance", "--no-collision"}};
-  report.errors = 0;
-  report.warnings = 0;
-  return report;
-}
-
-TEST(report_subjects, TextShowsEachFigureBesideItsLimitNaAndSkipped) {
-  const std::string text = ReportToText(SubjectsReport());
-  const std::vector<std::string> lines = SplitLines(text);
-  EXPECT_NE(lines[0].find(" in 2 rules, 3 skipped (--no-collision: collision.head_mold, "
-                          "collision.robot_cell, collision.clearance); 255 stitches"),
-            std::string::npos)
-      << lines[0];
-  const auto row = [&](const std::string& start) {
-    for (const std::string& l : lines) {
-      if (l.rfind(start, 0) == 0) return l;
-    }
-    return std::string();
-  };
-  const std::string length = row("  stitch.length ");
-  const std::string catcher = row("    catcher ");
-  const std::string insertion = row("    insertion ");
-  const std::string idle = row("  program.sync ");
-  ASSERT_FALSE(length.empty() || catcher.empty() || insertion.empty() || idle.empty()) << text;
-  EXPECT_NE(length.find("0.25 %"), std::string::npos) << length;
-  EXPECT_NE(length.find("line 9 stitch 2"), std::string::npos) << length;
-  EXPECT_NE(length.find("15 % (warn 5)"), std::string::npos) << length;
-  EXPECT_NE(insertion.find("8.359 %"), std::string::npos) << insertion;
-  EXPECT_EQ(insertion.substr(insertion.size() - 1), "-") << "no limit of its own";
-  EXPECT_NE(catcher.find("15 % (warn 5)"), std::string::npos) << catcher;
-  EXPECT_NE(idle.find("n/a"), std::string::npos) << idle;
-  EXPECT_EQ(idle.find("4.96"), std::string::npos) << idle;
-}
-
-TEST(report_subjects, JsonListsSubjectsNaAndSkipped) {
-  const Json j = Json::parse(ReportToJson(SubjectsReport()));
-  const Json& length = j["rules"][0];
-  EXPECT_EQ(length["applies"], true);
-  ASSERT_EQ(length["subjects"].size(), 2u);
-  const Json& insertion = length["subjects"][1];
-  EXPECT_EQ(insertion["subject"], "insertion");
-  EXPECT_EQ(insertion["checked"], 254);
-  EXPECT_TRUE(insertion["error_limit"].is_null());
-  EXPECT_EQ(insertion["worst"]["value"].get<double>(), 8.359);
-  EXPECT_EQ(insertion["worst"]["line"], 11);
-  EXPECT_EQ(length["subjects"][0]["warning_limit"].get<double>(), 5.0);
-  const Json& idle = j["rules"][1];
-  EXPECT_EQ(idle["applies"], false);
-  EXPECT_TRUE(idle["worst"].is_null());
-  ASSERT_EQ(j["skipped_rules"].size(), 3u);
-  EXPECT_EQ(j["skipped_rules"][1]["id"], "collision.robot_cell");
-  EXPECT_EQ(j["skipped_rules"][1]["reason"], "--no-collision");
-  EXPECT_EQ(j["stitchsim_version"], std::string(stitchsim::ToolVersion()));
-}
-
-TEST(report_subjects, JunitMarksSkippedAndNaAndNamesSubjects) {
-  Report report = SubjectsReport();
-  report.rules[0].errors = 1;
-  report.rules[0].worst_value = 30.0;
-  report.rules[0].worst_line = 8;
-  const Json root = ParseJunitWithPython(ReportToJunit(report));
-  ASSERT_TRUE(root.is_object());
-  EXPECT_EQ(root["attrib"]["tests"], "5");
-  EXPECT_EQ(root["attrib"]["skipped"], "3");
-  const Json& suite = root["children"][0];
-  EXPECT_EQ(suite["attrib"]["skipped"], "3");
-  EXPECT_EQ(suite["attrib"]["tests"], "5");
-  const Json& properties = suite["children"][0];
-  ASSERT_EQ(properties["tag"], "properties");
-  std::vector<std::string> names;
-  for (const Json& p : properties["children"]) names.push_back(p["attrib"]["name"]);
-  EXPECT_EQ(names, (std::vector<std::string>{"program", "scene", "scene_file", "head",
-                                             "stitchsim_version"}));
-  EXPECT_EQ(properties["children"][0]["attrib"]["value"], "prog.nc");
-  EXPECT_EQ(properties["children"][3]["attrib"]["value"], "rs535");
-  const Json* length = FindCase(suite, "stitch.length");
-  ASSERT_NE(length, nullptr);
-  EXPECT_EQ((*length)["children"][0]["attrib"]["message"],
-            "1 error; worst 30 % at line 8 (limit 15 %); catcher worst 0.25 % (limit 15 %); "
-            "insertion worst 8.359 % (no limit)");
-  const Json* idle = FindCase(suite, "program.sync");
-  ASSERT_NE(idle, nullptr);
-  EXPECT_EQ((*idle)["children"][0]["tag"], "system-out");
-  EXPECT_EQ((*idle)["children"][0]["text"], "n/a: the rule found nothing to check");
-  for (const char* id : {"collision.head_mold", "collision.robot_cell", "collision.clearance"}) {
-    const Json* c = FindCase(suite, id);
-    ASSERT_NE(c, nullptr) << id;
-    EXPECT_EQ((*c)["children"][0]["tag"], "skipped");
-    EXPECT_EQ((*c)["children"][0]["attrib"]["message"], "skipped: --no-collision");
-  }
 }
 
 // ---------------------------------------------------------------------------------------
