@@ -41,6 +41,13 @@ const fs::path& Dir() {
     fs::create_directories(d);
     return d;
   }();
+  // Destroyed before `dir` (constructed after it): removes the folder at exit.
+  static const struct Cleanup {
+    ~Cleanup() {
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+    }
+  } cleanup;
   return dir;
 }
 
