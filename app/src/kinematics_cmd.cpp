@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli_common.h"
+#include "cli_options.h"
 #include "commands.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/dialect.h"
@@ -223,7 +224,9 @@ void AddKinematicsCommands(CLI::App& app, int& exit_code) {
     cmd->add_option("--pose", args->pose, "X Y Z (mm) A B C (deg), part frame, dialect angles")
         ->required()
         ->expected(6);
-    cmd->add_option("--rail", args->rail_mm, "Rail position in mm (default: the rail policy)");
+    AddLengthOption(
+        cmd, "--rail", [args](double mm) { args->rail_mm = mm; }, LengthUnit::kMillimetre,
+        LengthRange::kAny, "Rail position", "the rail policy");
     cmd->add_option("--rotator", args->rotator_deg, "Rotator angle in deg (default 0)");
     cmd->callback([args, &exit_code] { exit_code = RunIk(*args); });
   }

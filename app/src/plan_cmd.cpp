@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "cli_common.h"
+#include "cli_options.h"
 #include "commands.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/geom/rotation.h"
@@ -32,7 +33,7 @@ struct PlanStitchArgs {
   std::string dialect;
   std::string path;
   std::string mode = "auto";
-  double stitch_length_mm = 0.0;
+  std::optional<double> stitch_length_mm;  ///< unset: the scene's nominal
   std::string output;
 };
 
@@ -73,7 +74,7 @@ int RunPlanStitch(const PlanStitchArgs& a) {
   if (path == nullptr) return kExitBadInput;
   planner::StitchPlanOptions options;
   options.mode = *planner::ParseMode(a.mode);
-  if (a.stitch_length_mm != 0.0) options.nominal_stitch_length_mm = a.stitch_length_mm;
+  if (a.stitch_length_mm) options.nominal_stitch_length_mm = *a.stitch_length_mm;
   auto planner = planner::StitchPathPlanner::Create(*scene, *path, options, sink);
   if (PrintDiagnostics(sink) || !planner) return kExitBadInput;
   // Written to memory first, then to the file whole (temporary file + rename).
@@ -310,8 +311,8 @@ struct PlanRasterArgs {
   std::vector<int> out_of_service;
   std::string library;
   // Unset: the scene's `raster:` value, else the built-in default.
-  std::optional<double> pitch_in, row_spacing_in, margin_in;
-  std::vector<double> region_in;  // u_min v_min u_max v_max, inches
+  std::optional<double> pitch_mm, row_spacing_mm, margin_mm;
+  std::vector<double> region_mm;  // u_min v_min u_max v_max, mm
   std::string output;
 };
 
@@ -324,14 +325,14 @@ int RunPlanRaster(const PlanRasterArgs& a) {
   constexpr double kInch = 25.4;
   planner::RasterOptions o = planner::RasterOptionsFor(*scene);
   o.strategy = *planner::ParseRasterStrategy(a.strategy);
-  if (a.pitch_in) o.pitch_mm = *a.pitch_in * kInch;
-  if (a.row_spacing_in) o.row_spacing_mm = *a.row_spacing_in * kInch;
-  if (a.margin_in) o.margin_mm = *a.margin_in * kInch;
+  if (a.pitch_mm) o.pitch_mm = *a.pitch_mm;
+  if (a.row_spacing_mm) o.row_spacing_mm = *a.row_spacing_mm;
+  if (a.margin_mm) o.margin_mm = *a.margin_mm;
   o.heads = a.heads;
   o.out_of_service = a.out_of_service;
-  if (a.region_in.size() == 4) {
-    o.region = Eigen::AlignedBox2d(Eigen::Vector2d(a.region_in[0], a.region_in[1]) * kInch,
-                                   Eigen::Vector2d(a.region_in[2], a.region_in[3]) * kInch);
+  if (a.region_mm.size() == 4) {
+    o.region = Eigen::AlignedBox2d(Eigen::Vector2d(a.region_mm[0], a.region_mm[1]),
+                                   Eigen::Vector2d(a.region_mm[2], a.region_mm[3]));
   }
   if (!a.library.empty()) {
     auto lib = planner::LoadUserCodeLibrary(a.library, *dialect, sink);
@@ -390,9 +391,10 @@ void AddPlanCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--path", args->path, "Path name (default: the scene's first path)");
   cmd->add_option("--mode", args->mode, "coupled | decoupled | auto")
       ->check(CLI::IsMember({"coupled", "decoupled", "auto"}));
-  cmd->add_option("--stitch-length", args->stitch_length_mm,
-                  "Nominal stitch length in mm (default: the scene's)")
-      ->check(CLI::PositiveNumber);
+  AddLengthOption(
+      cmd, "--stitch-length", [args](double mm) { args->stitch_length_mm = mm; },
+      LengthUnit::kMillimetre, LengthRange::kPositive, "Nominal stitch length",
+      "the scene's stitch.nominal_length");
   cmd->add_option("-o,--output", args->output, "Programme file to write")->required();
   cmd->add_option("--dialect", args->dialect,
                   "Dialect YAML file (default: the built-in dialect, models/dialect/default.yaml)");
@@ -415,8 +417,9 @@ void AddPlanCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0.0, 89.0));
   afp_cmd->add_option("--incline-step", afp->incline_step_deg, "auto: lean step, degrees")
       ->check(CLI::PositiveNumber);
-  afp_cmd->add_option("--spacing", afp->point_spacing_mm, "Point spacing along the course, mm")
-      ->check(CLI::PositiveNumber);
+  AddLengthOption(
+      afp_cmd, "--spacing", [afp](double mm) { afp->point_spacing_mm = mm; },
+      LengthUnit::kMillimetre, LengthRange::kPositive, "Point spacing along the course", "5mm");
   afp_cmd->add_option("-o,--output", afp->output, "Programme file to write")->required();
   afp_cmd->add_option("--csv", afp->csv, "Per-point CSV (alpha, tangent, inclination, B, C)");
   afp_cmd->callback([afp, &exit_code] { exit_code = RunPlanAfp(*afp); });
@@ -434,24 +437,19 @@ void AddPlanCommand(CLI::App& app, int& exit_code) {
                    "Heads (1-based) that get nothing, comma separated")
       ->delimiter(',');
   ras_cmd->add_option("--library", ras->library, "User code library YAML (docs/raster.md)");
-  ras_cmd
-      ->add_option("--pitch", ras->pitch_in,
-                   "Stitch pitch along a row, inches (default: scene raster.pitch, else 0.1)")
-      ->check(CLI::PositiveNumber);
-  ras_cmd
-      ->add_option("--row-spacing", ras->row_spacing_in,
-                   "Row spacing, inches (default: scene raster.row_spacing, else 0.2)")
-      ->check(CLI::PositiveNumber);
-  ras_cmd
-      ->add_option("--margin", ras->margin_in,
-                   "Clearance around constraints beyond the head's keep-out, inches (default: "
-                   "scene raster.margin, else 0.5)")
-      ->check(CLI::NonNegativeNumber);
-  ras_cmd
-      ->add_option("--region", ras->region_in,
-                   "Stitch only u_min,v_min,u_max,v_max (inches, part frame)")
-      ->delimiter(',')
-      ->expected(4);
+  // Raster lengths default to inches, the units of seed 001 and docs/raster.md.
+  AddLengthOption(
+      ras_cmd, "--pitch", [ras](double mm) { ras->pitch_mm = mm; }, LengthUnit::kInch,
+      LengthRange::kPositive, "Stitch pitch along a row", "the scene's raster.pitch, else 0.1in");
+  AddLengthOption(
+      ras_cmd, "--row-spacing", [ras](double mm) { ras->row_spacing_mm = mm; }, LengthUnit::kInch,
+      LengthRange::kPositive, "Row spacing", "the scene's raster.row_spacing, else 0.2in");
+  AddLengthOption(
+      ras_cmd, "--margin", [ras](double mm) { ras->margin_mm = mm; }, LengthUnit::kInch,
+      LengthRange::kNonNegative, "Clearance around constraints beyond the head's keep-out",
+      "the scene's raster.margin, else 0.5in");
+  AddLengthListOption(ras_cmd, "--region", 4, ras->region_mm, LengthUnit::kInch,
+                      "Stitch only u_min,v_min,u_max,v_max (part frame)");
   ras_cmd->add_option("-o,--output", ras->output, "Programme file to write")->required();
   ras_cmd->add_option("--dialect", ras->dialect, "Dialect YAML file (default: built-in)");
   ras_cmd->callback([ras, &exit_code] { exit_code = RunPlanRaster(*ras); });

@@ -22,8 +22,12 @@
 #include <utility>
 #include <vector>
 
+#include "report_test_support.h"
+
 namespace stitchsim::verify {
 namespace {
+
+using namespace report_test_support;  // NOLINT(google-build-using-namespace)
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
@@ -178,108 +182,6 @@ Report AwkwardReport() {
   return report;
 }
 
-// A file in the temp folder, removed when the test ends.
-class TempFile {
- public:
-  explicit TempFile(const std::string& suffix) {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    static int counter = 0;
-    path_ = fs::temp_directory_path() /
-            ("stitchsim_report_test_" + std::string(info->name()) + "_" +
-             std::to_string(::getpid()) + "_" + std::to_string(counter++) + suffix);
-  }
-  ~TempFile() {
-    std::error_code ignored;
-    fs::remove(path_, ignored);
-  }
-  TempFile(const TempFile&) = delete;
-  TempFile& operator=(const TempFile&) = delete;
-
-  const fs::path& path() const { return path_; }
-  void Write(const std::string& contents) const {
-    std::ofstream out(path_, std::ios::binary);
-    out << contents;
-    ASSERT_TRUE(out.good()) << path_;
-  }
-  std::string Read() const {
-    std::ifstream in(path_, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-  }
-
- private:
-  fs::path path_;
-};
-
-// Runs `python3 script args...`; returns the exit code, or -1 if it did not exit normally.
-int RunPython(const std::string& script, const std::vector<std::string>& args) {
-  TempFile script_file(".py");
-  script_file.Write(script);
-  std::string command = "python3 '" + script_file.path().string() + "'";
-  for (const std::string& arg : args) command += " '" + arg + "'";
-  const int status = std::system(command.c_str());
-  return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-// Strict JSON (NaN / Infinity rejected, UTF-8 required), written back with sorted keys.
-constexpr const char* kPythonJsonCheck = R"py(
-import json, sys
-def reject(constant):
-    raise ValueError("not JSON: " + constant)
-with open(sys.argv[1], encoding="utf-8") as f:
-    data = json.load(f, parse_constant=reject)
-assert data["stitchsim_report"] == 1
-with open(sys.argv[2], "w", encoding="utf-8") as f:
-    json.dump(data, f, sort_keys=True, ensure_ascii=False)
-)py";
-
-// Parses the JUnit XML with ElementTree, checks the structure CI consumers rely on, and
-// writes the parsed tree as JSON for the C++ side to compare with the report.
-constexpr const char* kPythonJunitCheck = R"py(
-import json, sys
-import xml.etree.ElementTree as E
-root = E.parse(sys.argv[1]).getroot()
-assert root.tag == "testsuites", root.tag
-assert root.get("name") == "stitchsim"
-suites = list(root)
-assert len(suites) == 1 and suites[0].tag == "testsuite", suites
-suite = suites[0]
-cases = list(suite)
-assert all(c.tag == "testcase" for c in cases)
-assert int(root.get("tests")) == int(suite.get("tests")) == len(cases)
-failed = [c for c in cases if c.find("failure") is not None]
-assert int(root.get("failures")) == int(suite.get("failures")) == len(failed)
-assert suite.get("errors") == "0" and suite.get("skipped") == "0"
-for c in cases:
-    assert c.get("classname") == suite.get("name")
-    assert c.get("name")
-    assert len(c.findall("failure")) <= 1
-    for f in c.findall("failure"):
-        assert f.get("message") and f.get("type") == c.get("name")
-def tree(e):
-    return {"tag": e.tag, "attrib": dict(e.attrib), "text": e.text or "",
-            "children": [tree(c) for c in e]}
-with open(sys.argv[2], "w", encoding="utf-8") as f:
-    json.dump(tree(root), f, ensure_ascii=False)
-)py";
-
-// The JUnit XML as parsed by Python, as a tree of {tag, attrib, text, children}.
-Json ParseJunitWithPython(const std::string& xml) {
-  TempFile in(".xml");
-  TempFile out(".json");
-  in.Write(xml);
-  EXPECT_EQ(RunPython(kPythonJunitCheck, {in.path().string(), out.path().string()}), 0) << xml;
-  return Json::parse(out.Read(), nullptr, /*allow_exceptions=*/false);
-}
-
-std::vector<std::string> SplitLines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
 std::vector<std::string> Keys(const OrderedJson& object) {
   std::vector<std::string> keys;
   for (const auto& item : object.items()) keys.push_back(item.key());
@@ -297,18 +199,18 @@ std::size_t Columns(const std::string& s) {
 
 TEST(report_json, KeysInDocumentedOrder) {
   const OrderedJson j = OrderedJson::parse(ReportToJson(FailingReport()));
-  EXPECT_EQ(Keys(j),
-            (std::vector<std::string>{"stitchsim_report", "verdict", "program", "scene", "counts",
-                                      "stitch_length_mm", "cycle_time_s", "rules"}));
+  EXPECT_EQ(Keys(j), (std::vector<std::string>{"stitchsim_report", "stitchsim_version", "verdict",
+                                               "program", "scene", "counts", "stitch_length_mm",
+                                               "cycle_time_s", "rules", "skipped_rules"}));
   EXPECT_EQ(Keys(j["scene"]), (std::vector<std::string>{"file", "name", "head"}));
   EXPECT_EQ(Keys(j["counts"]),
             (std::vector<std::string>{"lines", "moves", "stitches", "errors", "warnings"}));
   ASSERT_EQ(j["rules"].size(), 3u);
   for (const auto& rule : j["rules"]) {
     EXPECT_EQ(Keys(rule),
-              (std::vector<std::string>{"id", "description", "unit", "checked", "errors",
+              (std::vector<std::string>{"id", "description", "unit", "checked", "applies", "errors",
                                         "warnings", "error_limit", "warning_limit", "worst",
-                                        "findings_truncated", "findings"}));
+                                        "subjects", "findings_truncated", "findings"}));
   }
   EXPECT_EQ(Keys(j["rules"][0]["worst"]), (std::vector<std::string>{"value", "line", "stitch"}));
   EXPECT_EQ(Keys(j["rules"][0]["findings"][0]),
@@ -471,13 +373,6 @@ TEST(report_json, EveryKeyIsDocumented) {
 // ---------------------------------------------------------------------------------------
 // JUnit
 
-const Json* FindCase(const Json& suite, const std::string& name) {
-  for (const Json& c : suite["children"]) {
-    if (c["attrib"]["name"] == name) return &c;
-  }
-  return nullptr;
-}
-
 TEST(report_junit, StructureAndCounts) {
   const std::string xml = ReportToJunit(FailingReport());
   EXPECT_EQ(xml.rfind("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites ", 0), 0u);
@@ -488,14 +383,15 @@ TEST(report_junit, StructureAndCounts) {
   EXPECT_EQ(root["attrib"]["failures"], "1");
   ASSERT_EQ(root["children"].size(), 1u);
   const Json& suite = root["children"][0];
-  EXPECT_EQ(suite["attrib"]["name"], "stitchsim.circle_8in");
+  EXPECT_EQ(suite["attrib"]["name"], "stitchsim.circle_8in.prog_nc");
   EXPECT_EQ(suite["attrib"]["tests"], "3");
   EXPECT_EQ(suite["attrib"]["failures"], "1");
   EXPECT_EQ(suite["attrib"]["time"], "0");
-  ASSERT_EQ(suite["children"].size(), 3u);
-  EXPECT_EQ(suite["children"][0]["attrib"]["name"], "needle.side_force");
-  EXPECT_EQ(suite["children"][1]["attrib"]["name"], "stitch.normality");
-  EXPECT_EQ(suite["children"][2]["attrib"]["name"], "program.empty");
+  ASSERT_EQ(suite["children"].size(), 4u);  // <properties>, then the test cases
+  EXPECT_EQ(suite["children"][0]["tag"], "properties");
+  EXPECT_EQ(suite["children"][1]["attrib"]["name"], "needle.side_force");
+  EXPECT_EQ(suite["children"][2]["attrib"]["name"], "stitch.normality");
+  EXPECT_EQ(suite["children"][3]["attrib"]["name"], "program.empty");
 
   // Errors: one <failure> listing every kept finding, then how many were not kept.
   const Json* side = FindCase(suite, "needle.side_force");
@@ -550,7 +446,7 @@ TEST(report_junit, AwkwardStringsAreEscaped) {
   ASSERT_TRUE(root.is_object());
   EXPECT_EQ(root["attrib"]["failures"], "1");
   const Json& suite = root["children"][0];
-  const std::string suite_name = "stitchsim.o'brien <&> \"x\"\tnl\ncr\r";
+  const std::string suite_name = "stitchsim.o'brien <&> \"x\"\tnl\ncr\r.odd__prog______nc";
   EXPECT_EQ(suite["attrib"]["name"], suite_name);
   const Json* reach = FindCase(suite, "kin.reach");
   ASSERT_NE(reach, nullptr);
@@ -579,7 +475,7 @@ TEST(report_junit, NonFiniteWorstInFailureMessage) {
   report.rules[0].error_limit = kInf;
   const Json root = ParseJunitWithPython(ReportToJunit(report));
   ASSERT_TRUE(root.is_object());
-  EXPECT_EQ(root["children"][0]["children"][0]["children"][0]["attrib"]["message"],
+  EXPECT_EQ(root["children"][0]["children"][1]["children"][0]["attrib"]["message"],
             "250 errors; worst nan mm at line 12 (limit inf mm)");
 }
 

@@ -164,4 +164,83 @@ TEST_F(VerifyCli, CustomDialectPlansAndVerifies) {
             2);
 }
 
+// Item 15: --no-collision is visible: the headline names the skipped rules, the JSON lists
+// them, JUnit marks them <skipped/>. Without the flag the same three ids are rules that ran.
+TEST_F(VerifyCli, SkippedRulesAreNamedInEveryReport) {
+  const std::string prog = (dir_ / "decoupled.nc").string();
+  const fs::path json = dir_ / "s.json", xml = dir_ / "s.xml", out = dir_ / "s.txt";
+  ASSERT_EQ(RunCli("verify " + prog + " --scene " + scene_ + " --no-collision --report " +
+                       json.string() + " --junit " + xml.string(),
+                   out),
+            0);
+  const std::string text = Slurp(out);
+  EXPECT_NE(text.substr(0, text.find('\n'))
+                .find(" 3 skipped (--no-collision: collision.head_mold, collision.robot_cell, "
+                      "collision.clearance)"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(Python(R"(import json, sys
+r = json.load(open(sys.argv[1]))
+ids = ["collision.head_mold", "collision.robot_cell", "collision.clearance"]
+assert [s["id"] for s in r["skipped_rules"]] == ids, r["skipped_rules"]
+assert all(s["reason"] == "--no-collision" for s in r["skipped_rules"])
+assert not set(ids) & {x["id"] for x in r["rules"]}
+)",
+                   json),
+            0);
+  EXPECT_EQ(Python(R"(import sys, xml.etree.ElementTree as E
+suite = E.parse(sys.argv[1]).getroot().find("testsuite")
+skipped = [c.get("name") for c in suite.findall("testcase") if c.find("skipped") is not None]
+assert skipped == ["collision.head_mold", "collision.robot_cell", "collision.clearance"], skipped
+assert suite.get("skipped") == "3"
+assert int(suite.get("tests")) == len(suite.findall("testcase"))
+)",
+                   xml),
+            0);
+  const fs::path full = dir_ / "full.json";
+  ASSERT_EQ(RunCli("verify " + prog + " --scene " + scene_ + " --report " + full.string()), 0);
+  EXPECT_EQ(Python(R"(import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["skipped_rules"] == []
+ids = [x["id"] for x in r["rules"]]
+assert [i for i in ids if i.startswith("collision.")] == [
+    "collision.head_mold", "collision.robot_cell", "collision.clearance"], ids
+)",
+                   full),
+            0);
+}
+
+// Item 16: JUnit names what was checked: programme, scene, head and the tool version (the
+// CMake project version) as testsuite properties, and the programme in the suite name, so
+// two programmes' reports merged in one CI view stay apart.
+TEST_F(VerifyCli, JunitNamesProgrammeSceneHeadAndVersion) {
+  const std::string cmake = Slurp(kSource / "CMakeLists.txt");
+  const std::string tag = "project(stitchsim VERSION ";
+  ASSERT_NE(cmake.find(tag), std::string::npos);
+  const std::size_t at = cmake.find(tag) + tag.size();
+  const std::string version = cmake.substr(at, cmake.find(' ', at) - at);
+  const fs::path version_out = dir_ / "version.txt";
+  ASSERT_EQ(RunCli("--version", version_out), 0);
+  EXPECT_EQ(Slurp(version_out), "stitchsim " + version + "\n");
+  for (const char* name : {"coupled", "decoupled"}) {
+    const fs::path xml = dir_ / (std::string(name) + ".xml");
+    const std::string prog = (dir_ / (std::string(name) + ".nc")).string();
+    RunCli("verify " + prog + " --scene " + scene_ + " --junit " + xml.string());
+    std::ofstream(dir_ / "expect.txt") << prog << "\n" << scene_ << "\n" << version << "\n";
+    EXPECT_EQ(Python(R"(import sys, os, xml.etree.ElementTree as E
+prog, scene_file, version = open(os.path.join(os.path.dirname(sys.argv[1]), "expect.txt")).read().split("\n")[:3]
+suite = E.parse(sys.argv[1]).getroot().find("testsuite")
+props = {p.get("name"): p.get("value") for p in suite.find("properties").findall("property")}
+assert props == {"program": prog, "scene": "circle_8in", "scene_file": scene_file,
+                 "head": "rs535", "stitchsim_version": version}, props
+name = suite.get("name")
+assert name.startswith("stitchsim.circle_8in.") and name.endswith(os.path.basename(prog).replace(".", "_")), name
+assert all(c.get("classname") == name for c in suite.findall("testcase"))
+)",
+                     xml),
+              0)
+        << name;
+  }
+}
+
 }  // namespace

@@ -22,7 +22,8 @@ bool Checkable(const sim::TraceSample& s) {
          s.ik_status != sim::IkStatus::kJointLimit;
 }
 
-// One finding per (line, body pair); the depth reported is the first seen on that line.
+// One finding per line (Rule::Record merges the body pairs of a line: the deepest stays); a
+// pair is recorded at its first contact on the line.
 class ContactRule final : public Rule {
  public:
   ContactRule(const RuleContext& ctx, std::string id, std::string description,

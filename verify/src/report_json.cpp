@@ -39,25 +39,45 @@ Json FindingToJson(const Finding& finding) {
   return j;
 }
 
+// {value, line, stitch}, or null when nothing was measured.
+Json WorstToJson(const std::optional<double>& value, int line, long stitch) {
+  if (!value) return Json(nullptr);
+  Json worst = Json::object();
+  worst["value"] = Number(*value);
+  worst["line"] = line;
+  worst["stitch"] = stitch;
+  return worst;
+}
+
+Json SubjectToJson(const SubjectFigure& s) {
+  Json j = Json::object();
+  j["subject"] = s.subject;
+  j["checked"] = s.checked;
+  j["applies"] = s.checked > 0;
+  j["error_limit"] = OptionalNumber(s.error_limit);
+  j["warning_limit"] = OptionalNumber(s.warning_limit);
+  j["worst"] =
+      s.checked > 0 ? WorstToJson(s.worst_value, s.worst_line, s.worst_stitch) : Json(nullptr);
+  return j;
+}
+
 Json RuleToJson(const RuleSummary& rule) {
   Json j = Json::object();
   j["id"] = rule.id;
   j["description"] = rule.description;
   j["unit"] = rule.unit;
   j["checked"] = rule.checked;
+  j["applies"] = rule.Applies();
   j["errors"] = rule.errors;
   j["warnings"] = rule.warnings;
   j["error_limit"] = OptionalNumber(rule.error_limit);
   j["warning_limit"] = OptionalNumber(rule.warning_limit);
-  if (rule.worst_value) {
-    Json worst = Json::object();
-    worst["value"] = Number(*rule.worst_value);
-    worst["line"] = rule.worst_line;
-    worst["stitch"] = rule.worst_stitch;
-    j["worst"] = std::move(worst);
-  } else {
-    j["worst"] = nullptr;
-  }
+  // A rule that checked nothing has no worst value ("n/a"), whatever it observed.
+  j["worst"] = rule.Applies() ? WorstToJson(rule.worst_value, rule.worst_line, rule.worst_stitch)
+                              : Json(nullptr);
+  Json subjects = Json::array();
+  for (const SubjectFigure& s : rule.subjects) subjects.push_back(SubjectToJson(s));
+  j["subjects"] = std::move(subjects);
   j["findings_truncated"] = rule.truncated;
   Json findings = Json::array();
   for (const Finding& finding : rule.findings) findings.push_back(FindingToJson(finding));
@@ -70,6 +90,7 @@ Json RuleToJson(const RuleSummary& rule) {
 std::string ReportToJson(const Report& report) {
   Json j = Json::object();
   j["stitchsim_report"] = kFormatVersion;
+  j["stitchsim_version"] = report.tool_version;
   j["verdict"] = report.verdict;
   j["program"] = report.program_file;
   Json scene = Json::object();
@@ -89,6 +110,14 @@ std::string ReportToJson(const Report& report) {
   Json rules = Json::array();
   for (const RuleSummary& rule : report.rules) rules.push_back(RuleToJson(rule));
   j["rules"] = std::move(rules);
+  Json skipped = Json::array();
+  for (const SkippedRule& rule : report.skipped) {
+    Json s = Json::object();
+    s["id"] = rule.id;
+    s["reason"] = rule.reason;
+    skipped.push_back(std::move(s));
+  }
+  j["skipped_rules"] = std::move(skipped);
   // Malformed UTF-8 in a string (a programme comment, a path) becomes U+FFFD instead of
   // throwing; non-ASCII stays UTF-8 and control characters are escaped as \u00XX.
   return j.dump(2, ' ', /*ensure_ascii=*/false, Json::error_handler_t::replace) + "\n";

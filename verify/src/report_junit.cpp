@@ -109,6 +109,14 @@ std::string FailureMessage(const RuleSummary& rule) {
   if (rule.error_limit) {
     message += " (limit " + WithUnit(FormatNumber(*rule.error_limit), rule.unit) + ")";
   }
+  // Subjects with their own limits: each figure beside its own limit.
+  for (const SubjectFigure& s : rule.subjects) {
+    message += "; " + s.subject + " worst ";
+    message += s.checked == 0 || !s.worst_value ? std::string("n/a")
+                                                : WithUnit(FormatNumber(*s.worst_value), rule.unit);
+    message += s.error_limit ? " (limit " + WithUnit(FormatNumber(*s.error_limit), rule.unit) + ")"
+                             : std::string(" (no limit)");
+  }
   return message;
 }
 
@@ -142,28 +150,66 @@ std::string Testcase(const RuleSummary& rule, const std::string& classname) {
   } else if (rule.warnings > 0) {
     out += ">\n      <system-out>" + FindingList(rule, true) + "</system-out>\n";
     out += "    </testcase>\n";
+  } else if (!rule.Applies()) {
+    out += ">\n      <system-out>n/a: the rule found nothing to check</system-out>\n";
+    out += "    </testcase>\n";
   } else {
     out += "/>\n";
   }
   return out;
 }
 
+// A rule that did not run: a test case marked <skipped/> with the reason.
+std::string SkippedTestcase(const SkippedRule& rule, const std::string& classname) {
+  return "    <testcase" + Attribute("classname", classname) + Attribute("name", rule.id) +
+         Attribute("time", "0") + ">\n      <skipped" +
+         Attribute("message", "skipped: " + rule.reason) + "/>\n    </testcase>\n";
+}
+
+// The programme as a name part: characters other than letters, digits, '_' and '-' become
+// '_', so a CI view's package.class split at '.' keeps one programme together.
+std::string NamePart(const std::string& s) {
+  std::string out = s;
+  for (char& c : out) {
+    const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                      c == '_' || c == '-';
+    if (!keep) c = '_';
+  }
+  return out;
+}
+
+std::string Property(std::string_view name, std::string_view value) {
+  return "      <property" + Attribute("name", name) + Attribute("value", value) + "/>\n";
+}
+
 }  // namespace
 
 std::string ReportToJunit(const Report& report) {
-  const std::string suite =
+  // stitchsim.<scene>.<programme>: reports of many programmes merged in one view stay apart.
+  std::string suite =
       "stitchsim." + (report.scene_name.empty() ? std::string("unnamed") : report.scene_name);
-  const long tests = static_cast<long>(report.rules.size());
+  if (!report.program_file.empty()) suite += "." + NamePart(report.program_file);
+  const long skipped = static_cast<long>(report.skipped.size());
+  const long tests = static_cast<long>(report.rules.size()) + skipped;
   long failures = 0;
   for (const RuleSummary& rule : report.rules) failures += rule.errors > 0 ? 1 : 0;
 
   std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   out += "<testsuites" + Attribute("name", "stitchsim") + Attribute("tests", tests) +
-         Attribute("failures", failures) + Attribute("errors", 0L) + Attribute("time", "0") + ">\n";
-  out += "  <testsuite" + Attribute("name", suite) + Attribute("tests", tests) +
-         Attribute("failures", failures) + Attribute("errors", 0L) + Attribute("skipped", 0L) +
+         Attribute("failures", failures) + Attribute("errors", 0L) + Attribute("skipped", skipped) +
          Attribute("time", "0") + ">\n";
+  out += "  <testsuite" + Attribute("name", suite) + Attribute("tests", tests) +
+         Attribute("failures", failures) + Attribute("errors", 0L) + Attribute("skipped", skipped) +
+         Attribute("time", "0") + ">\n";
+  out += "    <properties>\n";
+  out += Property("program", report.program_file);
+  out += Property("scene", report.scene_name);
+  out += Property("scene_file", report.scene_file);
+  out += Property("head", report.head);
+  out += Property("stitchsim_version", report.tool_version);
+  out += "    </properties>\n";
   for (const RuleSummary& rule : report.rules) out += Testcase(rule, suite);
+  for (const SkippedRule& rule : report.skipped) out += SkippedTestcase(rule, suite);
   out += "  </testsuite>\n";
   out += "</testsuites>\n";
   return out;

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -84,6 +85,22 @@ std::string Uppercase(std::string s) {
   return s;
 }
 
+// ", 3 skipped (--no-collision: collision.head_mold, ...)": the skipped rules by reason.
+std::string SkippedText(const std::vector<SkippedRule>& skipped) {
+  if (skipped.empty()) return "";
+  std::string out = ", " + std::to_string(skipped.size()) + " skipped (";
+  for (std::size_t i = 0; i < skipped.size(); ++i) {
+    const bool new_reason = i == 0 || skipped[i].reason != skipped[i - 1].reason;
+    if (new_reason) {
+      out += (i == 0 ? "" : "; ") + Printable(skipped[i].reason) + ": ";
+    } else {
+      out += ", ";
+    }
+    out += Printable(skipped[i].id);
+  }
+  return out + ")";
+}
+
 std::string Headline(const Report& report) {
   const std::string& scene = report.scene_name.empty() ? report.scene_file : report.scene_name;
   std::string line = report.verdict.empty() ? "UNKNOWN" : Uppercase(Printable(report.verdict));
@@ -92,18 +109,27 @@ std::string Headline(const Report& report) {
   if (!report.head.empty()) line += " (" + Printable(report.head) + ")";
   line += ": " + Count(report.errors, "error", "errors") + ", " +
           Count(report.warnings, "warning", "warnings") + " in " +
-          Count(static_cast<long>(report.rules.size()), "rule", "rules") + "; " +
-          Count(report.stitches, "stitch", "stitches") + ", " +
+          Count(static_cast<long>(report.rules.size()), "rule", "rules") +
+          SkippedText(report.skipped) + "; " + Count(report.stitches, "stitch", "stitches") + ", " +
           Count(report.moves, "move", "moves") + ", cycle " + FormatFixed1(report.cycle_time_s) +
           " s";
   return line;
 }
 
-std::string LimitCell(const RuleSummary& rule) {
-  std::string cell =
-      rule.error_limit ? WithUnit(FormatNumber(*rule.error_limit), rule.unit) : std::string("-");
-  if (rule.warning_limit) cell += " (warn " + FormatNumber(*rule.warning_limit) + ")";
+std::string LimitCell(const std::optional<double>& error_limit,
+                      const std::optional<double>& warning_limit, const std::string& unit) {
+  std::string cell = error_limit ? WithUnit(FormatNumber(*error_limit), unit) : std::string("-");
+  if (warning_limit) cell += " (warn " + FormatNumber(*warning_limit) + ")";
   return cell;
+}
+
+// The worst and where: "n/a" for a rule (or subject) that checked nothing, "-" when nothing
+// was measured.
+std::array<std::string, 2> WorstCells(long checked, const std::optional<double>& worst, int line,
+                                      long stitch, const std::string& unit) {
+  if (checked == 0) return {"n/a", "-"};
+  if (!worst) return {"-", "-"};
+  return {WithUnit(FormatNumber(*worst), unit), Location(line, stitch)};
 }
 
 // The table: one row of cells per rule under a header; numeric columns right-aligned.
@@ -113,12 +139,18 @@ std::string Table(const std::vector<RuleSummary>& rules) {
   std::vector<std::array<std::string, 7>> rows;
   rows.push_back({"rule", "checked", "errors", "warnings", "worst", "at", "limit"});
   for (const RuleSummary& rule : rules) {
-    const bool has_worst = rule.worst_value.has_value();
+    const auto worst =
+        WorstCells(rule.checked, rule.worst_value, rule.worst_line, rule.worst_stitch, rule.unit);
     rows.push_back({Printable(rule.id), std::to_string(rule.checked), std::to_string(rule.errors),
-                    std::to_string(rule.warnings),
-                    has_worst ? WithUnit(FormatNumber(*rule.worst_value), rule.unit) : "-",
-                    has_worst ? Location(rule.worst_line, rule.worst_stitch) : "-",
-                    LimitCell(rule)});
+                    std::to_string(rule.warnings), worst[0], worst[1],
+                    LimitCell(rule.error_limit, rule.warning_limit, rule.unit)});
+    // Each subject with its own limits gets its own row, its figure beside its limit.
+    for (const SubjectFigure& s : rule.subjects) {
+      const auto cells =
+          WorstCells(s.checked, s.worst_value, s.worst_line, s.worst_stitch, rule.unit);
+      rows.push_back({"  " + Printable(s.subject), std::to_string(s.checked), "", "", cells[0],
+                      cells[1], LimitCell(s.error_limit, s.warning_limit, rule.unit)});
+    }
   }
   std::array<std::size_t, 7> width{};
   for (const auto& row : rows) {

@@ -29,20 +29,45 @@ void Rule::Observe(double value, int line, long stitch, const sim::TraceSample* 
   }
 }
 
+bool Rule::Worse(FindingSeverity severity, double value, double limit, const Finding& than) {
+  if (severity != than.severity) return severity == FindingSeverity::kError;
+  if (limit > 0.0 && than.limit > 0.0) return value / limit > than.value / than.limit;
+  return value > than.value;
+}
+
 void Rule::Record(FindingSeverity severity, double value, double limit, int line, long stitch,
                   const std::string& subject, std::string message, const sim::TraceSample* sample) {
-  if (severity == FindingSeverity::kError) {
+  // One finding per line: find the line's finding, if it was reported already.
+  std::size_t index = static_cast<std::size_t>(-1);
+  bool seen = false;
+  if (line == last_finding_line_) {
+    seen = true;
+    index = last_finding_index_;
+  } else if (const auto it = kept_by_line_.find(line); it != kept_by_line_.end()) {
+    seen = true;
+    index = it->second;
+  }
+  bool was_error = false;
+  if (seen) {
+    const FindingSeverity before = index < summary_.findings.size()
+                                       ? summary_.findings[index].severity
+                                       : last_finding_severity_;
+    was_error = before == FindingSeverity::kError;
+    if (!was_error && severity == FindingSeverity::kError) {
+      --summary_.warnings;
+      ++summary_.errors;
+    }
+  } else if (severity == FindingSeverity::kError) {
     ++summary_.errors;
   } else {
     ++summary_.warnings;
   }
-  // The close-up goes to the worst error (or warning if there is no error).
-  const bool first_error = severity == FindingSeverity::kError && summary_.errors == 1;
+  last_finding_line_ = line;
+  last_finding_severity_ = was_error ? FindingSeverity::kError : severity;
+  // The close-up goes to the first error (or a warning if there is no error).
+  const bool first_error =
+      severity == FindingSeverity::kError && !was_error && summary_.errors == 1;
   if (sample != nullptr && (first_error || !worst_sample_)) worst_sample_ = *sample;
-  if (summary_.findings.size() >= kMaxFindingsPerRule) {
-    summary_.truncated = true;
-    return;
-  }
   Finding f;
   f.rule = summary_.id;
   f.severity = severity;
@@ -53,7 +78,40 @@ void Rule::Record(FindingSeverity severity, double value, double limit, int line
   f.unit = summary_.unit;
   f.subject = subject;
   f.message = std::move(message);
+  if (seen) {
+    last_finding_index_ = index;
+    if (index < summary_.findings.size() && Worse(severity, value, limit, summary_.findings[index]))
+      summary_.findings[index] = std::move(f);
+    return;
+  }
+  if (summary_.findings.size() >= kMaxFindingsPerRule) {
+    summary_.truncated = true;
+    last_finding_index_ = static_cast<std::size_t>(-1);
+    return;
+  }
+  last_finding_index_ = summary_.findings.size();
+  kept_by_line_.emplace(line, last_finding_index_);
   summary_.findings.push_back(std::move(f));
+}
+
+std::size_t Rule::AddSubject(std::string subject, std::optional<double> error_limit,
+                             std::optional<double> warning_limit) {
+  SubjectFigure figure;
+  figure.subject = std::move(subject);
+  figure.error_limit = error_limit;
+  figure.warning_limit = warning_limit;
+  summary_.subjects.push_back(std::move(figure));
+  return summary_.subjects.size() - 1;
+}
+
+void Rule::ObserveSubject(std::size_t index, double value, int line, long stitch) {
+  SubjectFigure& figure = summary_.subjects[index];
+  ++figure.checked;
+  if (!figure.worst_value || value > *figure.worst_value) {
+    figure.worst_value = value;
+    figure.worst_line = line;
+    figure.worst_stitch = stitch;
+  }
 }
 
 std::optional<FindingSeverity> Rule::Classify(double value, int line, long stitch,

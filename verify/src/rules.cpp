@@ -109,21 +109,30 @@ class StitchLengthRule final : public Rule {
  public:
   explicit StitchLengthRule(const RuleContext& ctx)
       : Rule("stitch.length",
-             "stitch length on the surface per needle against the programme's stitch length "
-             "(limits apply to the needle at the tool point; insertion limits if given)",
+             "stitch length on the surface per needle against the programme's stitch length, "
+             "between consecutive penetrations of a seam (rule limits: the needle at the tool "
+             "point; insertion limits for the other needles, if given)",
              "%"),
         ctx_(ctx) {
     summary_.error_limit = LimitOf(ctx, summary_.id, "error_pct");
     summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_pct");
     insertion_error_ = LimitOf(ctx, summary_.id, "insertion_error_pct");
     insertion_warning_ = LimitOf(ctx, summary_.id, "insertion_warning_pct");
+    // With two or more needles, each needle's figure beside its own limits.
+    const auto& needles = ctx.process->needles;
+    for (const scene::NeedleSpec& n : needles) {
+      const bool at_tool_point = n.through_mm.norm() < 1e-9;
+      at_tool_point_.push_back(at_tool_point);
+      if (needles.size() < 2) continue;
+      AddSubject(n.name, at_tool_point ? summary_.error_limit : insertion_error_,
+                 at_tool_point ? summary_.warning_limit : insertion_warning_);
+    }
   }
-  // A seam ends where the head moves with the needles out (a jump or a reposition) or
-  // stitching is switched off: the next penetration starts a new seam.
+  // A seam ends where stitching is switched off (M11) or the head retracts (M20): the
+  // dialect has no thread-cut code. A move with the needles out inside a seam (stitching on,
+  // head down) does not end it: it lengthens the stitch the next penetration closes.
   void OnLine(const sim::LineRecord& l) override {
-    const bool drive = l.drive_to_mm - l.drive_from_mm > 1e-9;
-    const bool travels = (l.to.translation() - l.from.translation()).norm() > 1e-6;
-    if ((!drive && travels) || !l.stitching || l.head_retracted) previous_.reset();
+    if (!l.stitching || l.head_retracted) previous_.reset();
   }
   void OnPenetration(const PenetrationRecord& p) override {
     const auto& needles = ctx_.process->needles;
@@ -134,27 +143,25 @@ class StitchLengthRule final : public Rule {
         const double len = (*p.points[k] - *previous_->points[k]).norm();
         const double dev = std::abs(len - l) / l * 100.0;
         // Stitch k-1 ends where stitch k starts: report it on the earlier stitch.
-        const bool at_tool_point = needles[k].through_mm.norm() < 1e-9;
-        if (at_tool_point) {
-          CheckUpper(
-              dev, p.line, p.stitch - 1, needles[k].name,
-              [&] {
-                return needles[k].name + " needle stitch of " + Fmt("%.4g", len) + " mm: deviation";
-              },
-              &p.sample);
-        } else {
-          Counted();
-          Observe(dev, p.line, p.stitch - 1, nullptr);
-          const std::optional<double>* lim[2] = {&insertion_error_, &insertion_warning_};
-          for (int s = 0; s < 2; ++s) {
-            if (*lim[s] && dev > **lim[s]) {
-              Record(s == 0 ? FindingSeverity::kError : FindingSeverity::kWarning, dev, **lim[s],
-                     p.line, p.stitch - 1, needles[k].name,
-                     Fmt("insertion needle stitch of %.4g mm deviates %.3g %% from %.4g mm", len,
-                         dev, l),
-                     &p.sample);
-              break;
-            }
+        if (k < summary_.subjects.size()) ObserveSubject(k, dev, p.line, p.stitch - 1);
+        const auto what = [&] {
+          return needles[k].name + " needle stitch of " + Fmt("%.4g", len) + " mm: deviation";
+        };
+        if (at_tool_point_[k]) {
+          CheckUpper(dev, p.line, p.stitch - 1, needles[k].name, what, &p.sample);
+          continue;
+        }
+        // A needle off the tool point: its own (insertion) limits, if any.
+        const std::optional<double>* lim[2] = {&insertion_error_, &insertion_warning_};
+        for (int s = 0; s < 2; ++s) {
+          if (*lim[s] && dev > **lim[s]) {
+            Record(s == 0 ? FindingSeverity::kError : FindingSeverity::kWarning, dev, **lim[s],
+                   p.line, p.stitch - 1, needles[k].name,
+                   needles[k].name +
+                       Fmt(" needle stitch of %.4g mm deviates %.3g %% from ", len, dev) +
+                       Fmt("%.4g mm (its limit %.4g %%)", l, **lim[s]),
+                   &p.sample);
+            break;
           }
         }
       }
@@ -165,7 +172,8 @@ class StitchLengthRule final : public Rule {
  private:
   const RuleContext& ctx_;
   std::optional<PenetrationRecord> previous_;
-  std::optional<double> insertion_error_, insertion_warning_;
+  std::vector<bool> at_tool_point_;  ///< per needle: the rule's own limits apply
+  std::optional<double> insertion_error_, insertion_warning_;  ///< the other needles' limits
 };
 
 class StitchWidthRule final : public Rule {
@@ -407,41 +415,50 @@ class SyncRule final : public Rule {
  public:
   explicit SyncRule(const RuleContext& ctx)
       : Rule("program.sync",
-             "U (drive) and V (path length) consistent with each other and with the tool travel",
+             "U (drive) and V (path length) consistent with each other and with the tool travel; "
+             "inside a seam (stitching on, head down) every move of the tool point is stitched",
              "mm") {
     summary_.error_limit = LimitOf(ctx, summary_.id, "error_mm").value_or(0.01);
     // A chord is shorter than its arc: V may exceed the straight travel by this fraction.
     sag_fraction_ = LimitOf(ctx, summary_.id, "chord_allowance_pct").value_or(2.0) / 100.0;
   }
+  // Each line's value is its largest inconsistency of the checks that apply to it, in mm:
+  // V going back; |dU - dV| where U advances (AFP has no U); V against the tool travel where
+  // V or U advances or the line moves inside a seam (beyond the chord allowance).
   void OnLine(const sim::LineRecord& l) override {
     Counted();
     const double tol = *summary_.error_limit;
     const double du = l.drive_to_mm - l.drive_from_mm;
     const double dv = l.path_to_mm - l.path_from_mm;
     const double travel = (l.to.translation() - l.from.translation()).norm();
-    auto flag = [&](double value, const std::string& subject, const std::string& msg) {
-      Observe(value, l.source_line, 0, nullptr);
-      Record(FindingSeverity::kError, value, tol, l.source_line, 0, subject, msg, nullptr);
-    };
-    if (dv < -tol) {
-      flag(-dv, "V", Fmt("the path length V goes back by %.4g mm", -dv));
-      return;
-    }
-    if (du > tol && std::abs(du - dv) > tol) {
-      flag(std::abs(du - dv), "U-V",
-           Fmt("the drive advances %.4g mm but the path length %.4g mm", du, dv));
-      return;
-    }
-    if (dv > tol || (du > tol && travel > tol) || (du > tol && travel <= tol)) {
-      const double excess = dv - travel;
-      if (excess < -tol || excess > tol + sag_fraction_ * dv) {
-        flag(
-            std::abs(excess), "V-travel",
-            Fmt("the path length advances %.4g mm but the tool point travels %.4g mm", dv, travel));
-        return;
+    const bool in_seam = l.stitching && !l.head_retracted;
+    std::optional<std::pair<double, std::string>> worst;  // value, subject
+    std::string message;
+    auto consider = [&](double value, const char* subject, const std::string& msg) {
+      if (!worst || value > worst->first) {
+        worst = {value, subject};
+        message = msg;
       }
+    };
+    consider(std::max(0.0, -dv), "V", Fmt("the path length V goes back by %.4g mm", -dv));
+    if (du > tol) {
+      consider(std::abs(du - dv), "U-V",
+               Fmt("the drive advances %.4g mm but the path length %.4g mm", du, dv));
     }
-    Observe(std::abs(du - dv), l.source_line, 0, nullptr);
+    if (dv > tol || du > tol || in_seam) {
+      const double value = std::max({0.0, travel - dv, dv - travel - sag_fraction_ * dv});
+      std::string msg =
+          Fmt("the path length advances %.4g mm but the tool point travels %.4g mm", dv, travel);
+      if (in_seam && dv <= tol && du <= tol) {
+        msg += " with stitching on and the head down (a move inside a seam lengthens the stitch)";
+      }
+      consider(value, "V-travel", msg);
+    }
+    Observe(worst->first, l.source_line, 0, nullptr);
+    if (worst->first > tol) {
+      Record(FindingSeverity::kError, worst->first, tol, l.source_line, 0, worst->second, message,
+             nullptr);
+    }
   }
 
  private:
@@ -502,6 +519,14 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   if (ctx.collision != nullptr) rules.push_back(MakeCollisionClearanceRule(ctx));
   if (!ctx.scene->constraints.empty()) rules.push_back(MakeConstraintCrossingRule(ctx));
   return rules;
+}
+
+std::vector<SkippedRule> SkippedRules(const RuleContext& ctx) {
+  if (ctx.collision != nullptr) return {};
+  const std::string reason = "--no-collision";
+  return {{"collision.head_mold", reason},
+          {"collision.robot_cell", reason},
+          {"collision.clearance", reason}};
 }
 
 }  // namespace stitchsim::verify

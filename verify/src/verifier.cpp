@@ -104,6 +104,7 @@ void Verifier::Finish(Report& report) {
     report.warnings += s.warnings;
     report.rules.push_back(std::move(s));
   }
+  report.skipped = SkippedRules(ctx_);
   report.stitches = stitches_;
   report.verdict = report.errors == 0 ? "pass" : "fail";
 }

@@ -24,4 +24,9 @@ double MmPer(LengthUnit unit);
 /// "mm" / "in" / "m".
 std::string_view UnitName(LengthUnit unit);
 
+/// A length as text, in millimetres: a finite number with an optional unit suffix, spaces
+/// allowed around it ("2.5", "2.5mm", "0.1in", "0.1 inch", "1e-3m"); a bare number is in
+/// `default_unit`. nullopt for anything else (empty, no number, unknown unit, NaN, inf).
+std::optional<double> ParseLengthMm(std::string_view text, LengthUnit default_unit);
+
 }  // namespace stitchsim

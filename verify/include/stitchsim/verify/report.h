@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "stitchsim/common/version.h"
+
 namespace stitchsim::verify {
 
 enum class FindingSeverity { kWarning, kError };
@@ -24,22 +26,45 @@ struct Finding {
   std::string message;  ///< one sentence for people
 };
 
+/// One subject's figure beside its own limits, for a rule whose subjects are limited
+/// differently (stitch.length: the needle at the tool point and the insertion needle).
+struct SubjectFigure {
+  std::string subject;                  ///< "insertion", "catcher", ...
+  long checked = 0;                     ///< items of this subject checked
+  std::optional<double> error_limit;    ///< this subject's error limit, if any
+  std::optional<double> warning_limit;  ///< this subject's warning limit, if any
+  std::optional<double> worst_value;    ///< this subject's worst value, in the rule's unit
+  int worst_line = 0;
+  long worst_stitch = 0;
+};
+
 /// Everything one rule saw over the whole programme.
 struct RuleSummary {
-  std::string id;                       ///< "needle.side_force"
-  std::string description;              ///< one line: what the rule checks
-  std::string unit;                     ///< unit of values and limits
-  long checked = 0;                     ///< items checked (stitches, samples, lines; see the rule)
-  long errors = 0;                      ///< findings of error severity (all, even past the cap)
-  long warnings = 0;                    ///< findings of warning severity (all, even past the cap)
+  std::string id;           ///< "needle.side_force"
+  std::string description;  ///< one line: what the rule checks
+  std::string unit;         ///< unit of values and limits
+  long checked = 0;         ///< items checked (stitches, samples, lines; see the rule); 0 = n/a
+  long errors = 0;          ///< error findings, one per line at most (all, even past the cap)
+  long warnings = 0;        ///< warning findings, one per line at most (all, even past the cap)
   std::optional<double> error_limit;    ///< the error limit in force, if the rule has one
   std::optional<double> warning_limit;  ///< the warning limit in force, if any
   /// The worst value seen (largest, or smallest for lower-bound rules) and where.
   std::optional<double> worst_value;
   int worst_line = 0;
   long worst_stitch = 0;
+  /// Per-subject figures with their own limits (empty for most rules). The rule-level worst
+  /// and limits above are those of the subject the rule's own limits apply to.
+  std::vector<SubjectFigure> subjects;
   std::vector<Finding> findings;  ///< the first kMaxFindingsPerRule findings, in line order
   bool truncated = false;         ///< more findings than were kept
+  /// False when the rule found nothing to check (reported as "n/a", never as a worst value).
+  bool Applies() const { return checked > 0; }
+};
+
+/// A rule that did not run, and why (e.g. the collision rules under --no-collision).
+struct SkippedRule {
+  std::string id;      ///< "collision.head_mold"
+  std::string reason;  ///< "--no-collision"
 };
 
 inline constexpr std::size_t kMaxFindingsPerRule = 200;
@@ -54,10 +79,12 @@ struct Report {
   long moves = 0;       ///< motion lines executed
   long stitches = 0;    ///< stitch cycles executed
   double stitch_length_mm = 0.0;
-  double cycle_time_s = 0.0;       ///< simulated programme time
-  long errors = 0;                 ///< sum over rules
-  long warnings = 0;               ///< sum over rules
-  std::vector<RuleSummary> rules;  ///< in registry order
+  double cycle_time_s = 0.0;         ///< simulated programme time
+  long errors = 0;                   ///< sum over rules
+  long warnings = 0;                 ///< sum over rules
+  std::vector<RuleSummary> rules;    ///< in registry order
+  std::vector<SkippedRule> skipped;  ///< rules that did not run, in registry order
+  std::string tool_version{stitchsim::ToolVersion()};  ///< stitchsim version that wrote the report
 };
 
 /// Human summary for stdout: verdict, counts per rule, worst value and its line.

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "stitchsim/process/stitch_cycle.h"
@@ -84,17 +85,38 @@ class Rule {
   void RecordExceeded(FindingSeverity severity, double value, int line, long stitch,
                       const std::string& subject, const std::string& what,
                       const sim::TraceSample* sample);
-  /// Records a finding directly (for yes/no rules).
+  /// Records a finding directly (for yes/no rules). Findings are one per line: a second
+  /// finding on a line already reported merges into it (the worse one's value, subject and
+  /// message stay; error beats warning, then the larger value over its limit).
   void Record(FindingSeverity severity, double value, double limit, int line, long stitch,
               const std::string& subject, std::string message, const sim::TraceSample* sample);
   /// Tracks the worst value without a finding.
   void Observe(double value, int line, long stitch, const sim::TraceSample* sample);
+  /// Adds a subject with its own limits (RuleSummary::subjects); returns its index.
+  std::size_t AddSubject(std::string subject, std::optional<double> error_limit,
+                         std::optional<double> warning_limit);
+  /// Counts one item of subject `index` and tracks its worst value (not the rule's).
+  void ObserveSubject(std::size_t index, double value, int line, long stitch);
 
   RuleSummary summary_;
   std::optional<sim::TraceSample> worst_sample_;
+
+ private:
+  /// Severity first, then value over limit (value alone when there is no positive limit).
+  static bool Worse(FindingSeverity severity, double value, double limit, const Finding& than);
+  /// Line of the last finding recorded and its index in findings (npos when not kept).
+  int last_finding_line_ = -1;
+  std::size_t last_finding_index_ = static_cast<std::size_t>(-1);
+  FindingSeverity last_finding_severity_ = FindingSeverity::kWarning;
+  /// Kept findings by line (at most kMaxFindingsPerRule entries), for lines reported out of
+  /// order.
+  std::unordered_map<int, std::size_t> kept_by_line_;
 };
 
 /// Every rule, in report order, with limits from `ctx`.
 std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx);
+/// The rules MakeRules leaves out on purpose (no collision world: the collision.* rules),
+/// in registry order, with the reason.
+std::vector<SkippedRule> SkippedRules(const RuleContext& ctx);
 
 }  // namespace stitchsim::verify
