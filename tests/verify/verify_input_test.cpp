@@ -49,9 +49,10 @@ void Write(const fs::path& file, const std::vector<std::string>& lines) {
 class VerifyInput : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("stitchsim_verify_input_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    // One folder per case under this build (ctest runs cases in parallel; other checkouts'
+    // builds on the same machine do not share it).
+    dir_ = fs::path(STITCHSIM_BINARY_DIR) / "verify_input_test" /
+           ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     scene_ = (kSource / "scenes/flat_straight.yaml").string();
