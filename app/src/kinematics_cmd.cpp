@@ -211,6 +211,7 @@ void AddKinematicsCommands(CLI::App& app, int& exit_code) {
                     "rail_x (mm), a1..a6 (deg), rotator (deg), in model order")
         ->required()
         ->expected(sim::kNumJoints);
+    AddScenePathFlag(*cmd);
     cmd->callback([args, &exit_code] { exit_code = RunFk(*args); });
   }
   {
@@ -225,6 +226,7 @@ void AddKinematicsCommands(CLI::App& app, int& exit_code) {
         ->expected(6);
     cmd->add_option("--rail", args->rail_mm, "Rail position in mm (default: the rail policy)");
     cmd->add_option("--rotator", args->rotator_deg, "Rotator angle in deg (default 0)");
+    AddScenePathFlag(*cmd);
     cmd->callback([args, &exit_code] { exit_code = RunIk(*args); });
   }
 }

@@ -1,6 +1,7 @@
 // stitchsim: plan, execute and verify composite stitching / fiber placement programmes on an
-// ISAAC-like cell. Exit codes: 0 success / pass, 1 findings, 2 bad input.
+// ISAAC-like cell. Exit codes: 0 success / pass, 1 findings, 2 bad input, 3 internal error.
 #include <CLI/CLI.hpp>
+#include <exception>
 #include <iostream>
 
 #include "commands.h"
@@ -17,11 +18,19 @@ int main(int argc, char** argv) {
   stitchsim::app::AddCheckCommand(app, exit_code);
   stitchsim::app::AddKinematicsCommands(app, exit_code);
   stitchsim::app::AddVerifyCommand(app, exit_code);
+  // The subcommands run inside parse(). Bad input is a diagnostic and exit 2 there; an
+  // exception reaching this far is a bug, reported as one (exit 3), never a crash or a verdict.
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : stitchsim::app::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "stitchsim: internal error: " << e.what() << '\n';
+    return stitchsim::app::kExitInternal;
+  } catch (...) {
+    std::cerr << "stitchsim: internal error: unknown exception\n";
+    return stitchsim::app::kExitInternal;
   }
   return exit_code;
 }

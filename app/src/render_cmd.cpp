@@ -262,7 +262,12 @@ void AddRenderCommand(CLI::App& app, int& exit_code) {
                   "Also write the pixel coverage of robot, head, mold, preform, paths... (JSON)");
   cmd->add_option("--view", args->view, "overview | head | part")
       ->check(CLI::IsMember({"overview", "head", "part"}));
+  AddScenePathFlag(*cmd);
   cmd->callback([args, &exit_code] {
+    if (!OutputsDistinct({{"--output", args->output}, {"--coverage-json", args->coverage_json}})) {
+      exit_code = kExitBadInput;
+      return;
+    }
     auto ls = LoadSceneAndRobot(args->scene);
     if (!ls) {
       exit_code = kExitBadInput;

@@ -132,11 +132,13 @@ int WriteCloseUp(const LoadedScene& ls, const sim::CellSetup& cell, const verify
 }
 
 int RunVerify(const VerifyArgs& a) {
+  if (!OutputsDistinct({{"--report", a.report_json}, {"--junit", a.junit}})) return kExitBadInput;
   auto ls = LoadSceneAndRobot(a.scene);
   if (!ls) return kExitBadInput;
   const std::optional<program::Dialect> custom = DialectOption(a.dialect);
   if (!custom) return kExitBadInput;
   const program::Dialect& dialect = *custom;
+  if (!ProgramInputOk(a.program)) return kExitBadInput;
   std::ifstream probe(a.program, std::ios::binary);
   if (!probe) {
     PrintError("io-missing-file", "cannot open programme " + a.program);
@@ -220,6 +222,7 @@ void AddVerifyCommand(CLI::App& app, int& exit_code) {
                   "Dialect YAML file (default: the built-in dialect, models/dialect/default.yaml)");
   cmd->add_option("--snapshots", args->snapshots,
                   "Write overview.png and <rule>.png close-ups into this folder");
+  AddScenePathFlag(*cmd);
   cmd->add_flag("--no-collision", args->no_collision,
                 "Skip the FCL collision checks (collision.* rules)");
   cmd->callback([args, &exit_code] { exit_code = RunVerify(*args); });
