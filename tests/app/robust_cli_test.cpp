@@ -40,7 +40,7 @@ std::string Slurp(const fs::path& p) {
   return ss.str();
 }
 
-struct Run {
+struct CliRun {
   int exit_code = -1;  // -1: killed by a signal
   std::string out, err;
 };
@@ -60,13 +60,13 @@ class RobustCli : public ::testing::Test {
   }
 
   // `stitchsim <args>` through the shell (args are shell words), within `seconds`.
-  Run Cli(const std::string& args, int seconds = 60) {
+  CliRun Cli(const std::string& args, int seconds = 60) {
     const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
     std::string cmd = kSanitized ? "" : "ulimit -v 4000000; ";
     cmd += "timeout " + std::to_string(seconds) + " " + kBinary.string() + " " + args + " >" +
            out.string() + " 2>" + err.string();
     const int status = std::system(("sh -c '" + cmd + "'").c_str());
-    Run r;
+    CliRun r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     r.out = Slurp(out);
     r.err = Slurp(err);
@@ -92,7 +92,7 @@ class RobustCli : public ::testing::Test {
   fs::path dir_;
 };
 
-std::string Describe(const Run& r) {
+std::string Describe(const CliRun& r) {
   return "exit " + std::to_string(r.exit_code) + "\n--- stdout\n" + r.out + "--- stderr\n" + r.err;
 }
 
@@ -102,8 +102,8 @@ TEST_F(RobustCli, ADirectoryAsSceneOrProgrammeIsBadInputNotACrash) {
   fs::create_directories(dir_ / "scene.yaml");
   fs::create_directories(dir_ / "prog.nc");
   const fs::path flat = kSource / "scenes" / "flat_straight.yaml";
-  Run r = Cli("plan stitch --scene " + (dir_ / "scene.yaml").string() + " -o " +
-              (dir_ / "o.nc").string());
+  CliRun r = Cli("plan stitch --scene " + (dir_ / "scene.yaml").string() + " -o " +
+                 (dir_ / "o.nc").string());
   EXPECT_EQ(r.exit_code, 2) << Describe(r);
   EXPECT_NE(r.err.find("scene-not-a-file"), std::string::npos) << Describe(r);
   r = Cli("verify " + (dir_ / "prog.nc").string() + " --scene " + flat.string());
@@ -114,7 +114,7 @@ TEST_F(RobustCli, ADirectoryAsSceneOrProgrammeIsBadInputNotACrash) {
 
 TEST_F(RobustCli, AFifoAsSceneDoesNotHang) {
   ASSERT_EQ(::mkfifo((dir_ / "scene.yaml").c_str(), 0600), 0);
-  const Run r = Cli(
+  const CliRun r = Cli(
       "plan stitch --scene " + (dir_ / "scene.yaml").string() + " -o " + (dir_ / "o.nc").string(),
       20);
   EXPECT_EQ(r.exit_code, 2) << Describe(r);  // 124: hung in open()
@@ -135,7 +135,7 @@ TEST_F(RobustCli, AnStlOutsideTheSceneFolderIsRefusedUnlessAllowed) {
   const fs::path scene = Write("scene/s.yaml", text);
   const std::string args =
       "plan stitch --scene " + scene.string() + " -o " + (dir_ / "o.nc").string();
-  Run r = Cli(args);
+  CliRun r = Cli(args);
   EXPECT_EQ(r.exit_code, 2) << Describe(r);
   EXPECT_NE(r.err.find(scene.string() + ":11:"), std::string::npos) << Describe(r);
   EXPECT_NE(r.err.find("scene-path-outside"), std::string::npos) << Describe(r);
@@ -149,7 +149,7 @@ TEST_F(RobustCli, AnStlOutsideTheSceneFolderIsRefusedUnlessAllowed) {
 
 TEST_F(RobustCli, ATinyStitchLengthIsRefusedUpFront) {
   const fs::path scene = FlatScene("nominal_length: 5", "nominal_length: 0.000001");
-  const Run r = Cli("plan stitch --scene " + scene.string() + " -o " + (dir_ / "o.nc").string());
+  const CliRun r = Cli("plan stitch --scene " + scene.string() + " -o " + (dir_ / "o.nc").string());
   EXPECT_EQ(r.exit_code, 2) << Describe(r);
   EXPECT_NE(r.err.find("plan-too-many-stitches"), std::string::npos) << Describe(r);
   EXPECT_NE(r.err.find(scene.string() + ":19:"), std::string::npos) << Describe(r);
@@ -167,7 +167,7 @@ TEST_F(RobustCli, ALineBeyondTheSamplingBoundIsAFindingNotAnAllocation) {
     SCOPED_TRACE(c.name);
     const fs::path prog = Write(c.name + ".nc", head + c.line + "\nM30\n%\n");
     const fs::path report = dir_ / (c.name + ".json");
-    const Run r =
+    const CliRun r =
         Cli("verify " + prog.string() + " --no-collision --scene " +
             (kSource / "scenes" / "flat_straight.yaml").string() + " --report " + report.string());
     ASSERT_EQ(r.exit_code, 1) << Describe(r);
@@ -188,9 +188,9 @@ TEST_F(RobustCli, ALineBeyondTheSamplingBoundIsAFindingNotAnAllocation) {
 TEST_F(RobustCli, TheSameFileForTwoReportsIsRefusedBeforeAnythingRuns) {
   const fs::path prog = Write("p.nc", "%\nG21 G90\nT1 M6\nG0 X0 Y0 Z0 A0 B0 C-90 U0 V0\nM30\n%\n");
   const fs::path same = dir_ / "r.out";
-  const Run r = Cli("verify " + prog.string() + " --scene " +
-                    (kSource / "scenes" / "flat_straight.yaml").string() + " --report " +
-                    same.string() + " --junit " + (dir_ / "." / "r.out").string());
+  const CliRun r = Cli("verify " + prog.string() + " --scene " +
+                       (kSource / "scenes" / "flat_straight.yaml").string() + " --report " +
+                       same.string() + " --junit " + (dir_ / "." / "r.out").string());
   EXPECT_EQ(r.exit_code, 2) << Describe(r);
   EXPECT_NE(r.err.find("io-same-output"), std::string::npos) << Describe(r);
   EXPECT_FALSE(fs::exists(same));
@@ -200,8 +200,8 @@ TEST_F(RobustCli, APlantedTemporaryLinkIsNeverWrittenThrough) {
   const fs::path victim = Write("victim.txt", "keep me\n");
   const fs::path out = dir_ / "o.nc";
   fs::create_symlink(victim, dir_ / "o.nc.tmp");
-  const Run r = Cli("plan raster --scene " + (kSource / "scenes" / "wing_cover.yaml").string() +
-                    " --region 0,0,10,10 -o " + out.string());
+  const CliRun r = Cli("plan raster --scene " + (kSource / "scenes" / "wing_cover.yaml").string() +
+                       " --region 0,0,10,10 -o " + out.string());
   ASSERT_EQ(r.exit_code, 0) << Describe(r);
   EXPECT_EQ(Slurp(victim), "keep me\n");
   EXPECT_NE(Slurp(out).find("G1"), std::string::npos);
@@ -235,7 +235,7 @@ TEST_F(RobustCli, AnInterruptedPlanLeavesNoTemporaryBehind) {
   const fs::path out = dir_ / "o.nc";
   const std::string cmd = kBinary.string() + " plan raster --scene " +
                           (kSource / "scenes" / "wing_cover.yaml").string() + " -o " +
-                          out.string() + " >/dev/null 2>&1 & pid=$!; sleep 1; kill -TERM $pid; " +
+                          out.string() + " >/dev/null 2>&1 & pid=$!; sleep 0.5; kill -TERM $pid; " +
                           "wait $pid; echo $? > " + (dir_ / "rc").string();
   ASSERT_EQ(std::system(("sh -c '" + cmd + "'").c_str()), 0);
   const std::string rc = Slurp(dir_ / "rc");

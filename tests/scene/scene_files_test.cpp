@@ -138,7 +138,7 @@ TEST(SceneFiles, ADirectoryFifoOrDeviceAsStlIsRefusedAtItsLine) {
   const fs::path dir = Folder("dir_stl");
   fs::create_directories(dir / "plate.stl");
   ASSERT_EQ(::mkfifo((dir / "fifo.stl").c_str(), 0600), 0);
-  for (const std::string& name : {"plate.stl", "fifo.stl", "/dev/zero"}) {
+  for (const char* name : {"plate.stl", "fifo.stl", "/dev/zero"}) {
     SCOPED_TRACE(name);
     Write(dir / "s.yaml", MeshScene(name));
     LoadOptions allow;  // /dev/zero lies outside: allow it, to reach the file-type check
