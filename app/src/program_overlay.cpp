@@ -11,8 +11,9 @@ namespace stitchsim::app {
 namespace {
 
 // More points than a picture can show are thinned (every other one dropped, then every
-// fourth taken, ...), so a programme of any length draws in bounded memory.
-constexpr std::size_t kMaxOverlayPoints = 200'000;
+// fourth taken, ...): each drawn point costs the software renderer ~100 KB, so a programme of
+// any length draws in bounded memory (3000 points: ~600 MB at most).
+constexpr std::size_t kMaxOverlayPoints = 3000;
 
 }  // namespace
 

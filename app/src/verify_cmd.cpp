@@ -76,12 +76,14 @@ int WriteOverview(const LoadedScene& ls, const verify::Verifier& v, const std::s
   sets[2].label = "stitch_error";
   sets[2].rgba = kError;
   const auto& marks = v.StitchMarks();
-  const std::size_t stride = std::max<std::size_t>(1, marks.size() / 6000);
+  // Each drawn point costs the software renderer ~100 KB: at most kMaxPerSet per verdict.
+  constexpr std::size_t kMaxPerSet = 1000;
+  const std::size_t stride = std::max<std::size_t>(1, marks.size() / kMaxPerSet);
   for (std::size_t i = 0; i < marks.size(); ++i) {
     const auto& m = marks[i];
     if (m.severity == 0 && i % stride != 0) continue;
     auto& set = sets[std::min<int>(m.severity, 2)];
-    if (set.points_part_mm.size() < 6000)
+    if (set.points_part_mm.size() < kMaxPerSet)
       set.points_part_mm.push_back(m.position_mm.cast<double>());
   }
   for (auto& s : sets) {
