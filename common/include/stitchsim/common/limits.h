@@ -8,7 +8,7 @@
 namespace stitchsim::limits {
 
 /// Scene, head spec, dialect and user-library YAML files.
-inline constexpr std::uint64_t kMaxYamlFileBytes = 8u << 20;  // 8 MiB
+inline constexpr std::uint64_t kMaxYamlFileBytes = 2u << 20;  // 2 MiB (yaml-cpp: ~90x in memory)
 /// URDF and MJCF model files.
 inline constexpr std::uint64_t kMaxModelFileBytes = 32u << 20;  // 32 MiB
 /// STL meshes (surface and constraints); a binary STL of this size holds ~670,000 triangles.
