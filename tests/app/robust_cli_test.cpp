@@ -214,6 +214,23 @@ TEST_F(RobustCli, APlantedTemporaryLinkIsNeverWrittenThrough) {
   EXPECT_EQ(entries, 3);
 }
 
+// A symlink to a regular file replaces that file and stays a link; a directory is refused.
+TEST_F(RobustCli, AnOutputLinkIsFollowedAndADirectoryRefused) {
+  const fs::path real = Write("real.nc", "old\n");
+  fs::create_symlink(real, dir_ / "link.nc");
+  const std::string plan =
+      "plan stitch --scene " + (kSource / "scenes" / "flat_straight.yaml").string() + " -o ";
+  CliRun r = Cli(plan + (dir_ / "link.nc").string());
+  ASSERT_EQ(r.exit_code, 0) << Describe(r);
+  EXPECT_TRUE(fs::is_symlink(dir_ / "link.nc"));
+  EXPECT_NE(Slurp(real).find("M30"), std::string::npos);
+  fs::create_directories(dir_ / "adir.nc");
+  r = Cli(plan + (dir_ / "adir.nc").string());
+  EXPECT_EQ(r.exit_code, 2) << Describe(r);
+  EXPECT_NE(r.err.find("io-write"), std::string::npos) << Describe(r);
+  EXPECT_TRUE(fs::is_directory(dir_ / "adir.nc"));
+}
+
 // A FIFO (like /dev/stdout on a pipe) is written through, never replaced by a renamed file.
 TEST_F(RobustCli, AnOutputThatIsAFifoIsWrittenThroughNotReplaced) {
   const fs::path fifo = dir_ / "fifo.nc", copy = dir_ / "copy.nc";
