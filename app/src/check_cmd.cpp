@@ -34,11 +34,7 @@ int RunCheck(const CheckArgs& a) {
   }
   const program::Dialect& dialect = custom ? *custom : program::Dialect::Default();
 
-  std::error_code ec;
-  if (std::filesystem::is_directory(a.program, ec)) {
-    PrintError("io-missing-file", a.program + ": is a directory, not a programme");
-    return kExitBadInput;
-  }
+  if (!ProgramInputOk(a.program)) return kExitBadInput;
   std::ifstream in(a.program, std::ios::binary);
   if (!in) {
     PrintError("io-missing-file", "cannot open programme " + a.program);

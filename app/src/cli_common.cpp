@@ -2,7 +2,34 @@
 
 #include <iostream>
 
+#include "stitchsim/common/files.h"
+
 namespace stitchsim::app {
+
+scene::LoadOptions& SceneLoadOptions() {
+  static scene::LoadOptions options;
+  return options;
+}
+
+void AddScenePathFlag(CLI::App& cmd) {
+  cmd.add_flag("--allow-outside-paths", SceneLoadOptions().allow_outside_paths,
+               "Let the scene and head spec name files outside their folders and the models "
+               "folder (default: refused, docs/scene-format.md)");
+}
+
+bool OutputsDistinct(const std::vector<std::pair<std::string, std::string>>& outputs) {
+  const std::string err = CheckDistinctOutputs(outputs);
+  if (err.empty()) return true;
+  PrintError("io-same-output", err);
+  return false;
+}
+
+bool ProgramInputOk(const std::string& path) {
+  const std::string err = CheckStreamInput(path);
+  if (err.empty()) return true;
+  PrintError("io-missing-file", err);
+  return false;
+}
 
 bool PrintDiagnostics(const DiagnosticSink& sink) {
   for (const auto& d : sink.Diagnostics()) std::cerr << FormatDiagnostic(d) << '\n';
@@ -24,7 +51,7 @@ std::optional<program::Dialect> DialectOption(const std::string& file) {
 std::optional<LoadedScene> LoadSceneAndRobot(const std::filesystem::path& scene_file) {
   DiagnosticSink sink;
   LoadedScene out;
-  out.scene = scene::LoadScene(scene_file, sink);
+  out.scene = scene::LoadScene(scene_file, sink, SceneLoadOptions());
   if (out.scene) {
     auto robot = sim::LoadRobotModel(out.scene->cell_urdf, sink);
     if (robot) out.robot = std::make_unique<sim::RobotModel>(std::move(*robot));

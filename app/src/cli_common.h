@@ -1,9 +1,12 @@
 #pragma once
 // Shared pieces of the stitchsim subcommands: exit codes, diagnostics output, scene loading.
 
+#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "stitchsim/common/diagnostics.h"
 #include "stitchsim/program/dialect.h"
@@ -15,6 +18,20 @@ namespace stitchsim::app {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFindings = 1;  ///< well-formed input the cell cannot run
 inline constexpr int kExitBadInput = 2;  ///< malformed input, missing file, ...
+inline constexpr int kExitInternal = 3;  ///< a bug: an exception nothing else caught
+
+/// Scene loading options shared by every subcommand (`--allow-outside-paths`).
+scene::LoadOptions& SceneLoadOptions();
+/// Adds `--allow-outside-paths` to a subcommand that reads a scene.
+void AddScenePathFlag(CLI::App& cmd);
+
+/// Refuses (io-same-output, printed; false) two output options naming one file, before
+/// anything runs. Pairs of option name and path; empty paths are not given.
+bool OutputsDistinct(const std::vector<std::pair<std::string, std::string>>& outputs);
+
+/// Refuses (io-missing-file, printed; false) a programme path that is not a regular file or a
+/// pipe (a directory, a device).
+bool ProgramInputOk(const std::string& path);
 
 /// Prints every diagnostic to stderr; returns true if any was an error.
 bool PrintDiagnostics(const DiagnosticSink& sink);

@@ -212,6 +212,7 @@ void AddKinematicsCommands(CLI::App& app, int& exit_code) {
                     "rail_x (mm), a1..a6 (deg), rotator (deg), in model order")
         ->required()
         ->expected(sim::kNumJoints);
+    AddScenePathFlag(*cmd);
     cmd->callback([args, &exit_code] { exit_code = RunFk(*args); });
   }
   {
@@ -228,6 +229,7 @@ void AddKinematicsCommands(CLI::App& app, int& exit_code) {
         cmd, "--rail", [args](double mm) { args->rail_mm = mm; }, LengthUnit::kMillimetre,
         LengthRange::kAny, "Rail position", "the rail policy");
     cmd->add_option("--rotator", args->rotator_deg, "Rotator angle in deg (default 0)");
+    AddScenePathFlag(*cmd);
     cmd->callback([args, &exit_code] { exit_code = RunIk(*args); });
   }
 }

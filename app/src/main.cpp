@@ -1,7 +1,8 @@
 // stitchsim: plan, execute and verify composite stitching / fiber placement programmes on an
-// ISAAC-like cell. Exit codes: 0 success / pass, 1 findings, 2 bad input. A bare `stitchsim`
-// (or `stitchsim plan`) prints its help and exits 0.
+// ISAAC-like cell. Exit codes: 0 success / pass, 1 findings, 2 bad input, 3 internal error.
+// A bare `stitchsim` (or `stitchsim plan`) prints its help and exits 0.
 #include <CLI/CLI.hpp>
+#include <exception>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -25,13 +26,21 @@ int main(int argc, char** argv) {
   stitchsim::app::AddCheckCommand(app, exit_code);
   stitchsim::app::AddKinematicsCommands(app, exit_code);
   stitchsim::app::AddVerifyCommand(app, exit_code);
-  const std::vector<std::string> args(argv + (argc > 0 ? 1 : 0), argv + argc);
-  if (const auto early = stitchsim::app::PreDispatch(app, args)) return *early;
+  // The subcommands run inside parse(). Bad input is a diagnostic and exit 2 there; an
+  // exception reaching this far is a bug, reported as one (exit 3), never a crash or a verdict.
   try {
+    const std::vector<std::string> args(argv + (argc > 0 ? 1 : 0), argv + argc);
+    if (const auto early = stitchsim::app::PreDispatch(app, args)) return *early;
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : stitchsim::app::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "stitchsim: internal error: " << e.what() << '\n';
+    return stitchsim::app::kExitInternal;
+  } catch (...) {
+    std::cerr << "stitchsim: internal error: unknown exception\n";
+    return stitchsim::app::kExitInternal;
   }
   return exit_code;
 }

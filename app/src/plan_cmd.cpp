@@ -40,7 +40,7 @@ struct PlanStitchArgs {
 // A scene whose head stitches (diagnostics printed); nullptr otherwise.
 std::unique_ptr<scene::Scene> LoadStitchingScene(const std::string& file) {
   DiagnosticSink sink;
-  auto scene = scene::LoadScene(file, sink);
+  auto scene = scene::LoadScene(file, sink, SceneLoadOptions());
   if (PrintDiagnostics(sink) || !scene) return nullptr;
   if (!scene->head.IsStitching()) {
     PrintError("plan-wrong-head",
@@ -77,11 +77,17 @@ int RunPlanStitch(const PlanStitchArgs& a) {
   if (a.stitch_length_mm) options.nominal_stitch_length_mm = *a.stitch_length_mm;
   auto planner = planner::StitchPathPlanner::Create(*scene, *path, options, sink);
   if (PrintDiagnostics(sink) || !planner) return kExitBadInput;
-  // Written to memory first, then to the file whole (temporary file + rename).
-  std::ostringstream text;
+  // Streamed to a temporary file beside the output, renamed when complete: memory does not
+  // grow with the programme, and a failed or interrupted run leaves nothing behind.
+  std::string err;
+  auto out = OutputFile::Open(a.output, err);
+  if (!out) {
+    PrintError("io-write", err);
+    return kExitBadInput;
+  }
   const planner::ProgramSummary s =
-      planner::WriteStitchProgram(*planner, *scene, path->name, *dialect, text);
-  if (std::string err = WriteFileAtomically(a.output, text.str()); !err.empty()) {
+      planner::WriteStitchProgram(*planner, *scene, path->name, *dialect, out->Stream());
+  if (err = out->Commit(); !err.empty()) {
     PrintError("io-write", err);
     return kExitBadInput;
   }
@@ -121,19 +127,26 @@ std::string Deg(double rad) {
 
 /// Writes the programme (and the CSV), prints the summary and the over-travel findings.
 int WriteAfpOutputs(const scene::Scene& scene, const planner::AfpPlan& plan, const PlanAfpArgs& a) {
-  std::ostringstream text;
-  planner::WriteAfpProgram(plan, scene, program::Dialect::Default(), text);
-  if (std::string err = WriteFileAtomically(a.output, text.str()); !err.empty()) {
+  // The programme and the CSV are streamed to temporaries and renamed as a set only when
+  // both were written: both or neither.
+  std::string err;
+  auto program_out = OutputFile::Open(a.output, err);
+  std::unique_ptr<OutputFile> csv_out;
+  if (program_out && !a.csv.empty()) csv_out = OutputFile::Open(a.csv, err);
+  if (!program_out || (!a.csv.empty() && !csv_out)) {
     PrintError("io-write", err);
     return kExitBadInput;
   }
-  if (!a.csv.empty()) {
-    std::ostringstream csv;
-    planner::WriteAfpCsv(plan, csv);
-    if (std::string err = WriteFileAtomically(a.csv, csv.str()); !err.empty()) {
-      PrintError("io-write", err);
-      return kExitBadInput;
-    }
+  planner::WriteAfpProgram(plan, scene, program::Dialect::Default(), program_out->Stream());
+  if (csv_out) planner::WriteAfpCsv(plan, csv_out->Stream());
+  if (!program_out->Stream().flush() || (csv_out && !csv_out->Stream().flush())) {
+    PrintError("io-write", "write failed for " + a.output + (csv_out ? " or " + a.csv : ""));
+    return kExitBadInput;
+  }
+  if (err = program_out->Commit(); err.empty() && csv_out) err = csv_out->Commit();
+  if (!err.empty()) {
+    PrintError("io-write", err);
+    return kExitBadInput;
   }
   const auto& l = plan.limits;
   std::printf(
@@ -274,8 +287,9 @@ int RunPlanAfpAuto(const PlanAfpArgs& a, const scene::PathSpec* path,
 }
 
 int RunPlanAfp(const PlanAfpArgs& a) {
+  if (!OutputsDistinct({{"--output", a.output}, {"--csv", a.csv}})) return kExitBadInput;
   DiagnosticSink sink;
-  auto scene = scene::LoadScene(a.scene, sink);
+  auto scene = scene::LoadScene(a.scene, sink, SceneLoadOptions());
   if (PrintDiagnostics(sink) || !scene) return kExitBadInput;
   const bool by_lay_angle = !std::isnan(a.lay_angle_deg);
   const scene::PathSpec* path = nullptr;
@@ -339,29 +353,20 @@ int RunPlanRaster(const PlanRasterArgs& a) {
     if (PrintDiagnostics(sink) || !lib) return kExitBadInput;
     o.library = std::move(*lib);
   }
-  // Streamed straight to a temporary file beside the output, renamed when complete: memory
-  // does not grow with the programme.
-  const std::string tmp = a.output + ".tmp";
-  std::optional<planner::RasterSummary> s;
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) {
-      PrintError("io-write", "cannot write " + tmp);
-      return kExitBadInput;
-    }
-    s = planner::WriteRasterProgram(*scene, o, *dialect, out, sink);
-    out.close();
-    if (!out) {
-      PrintError("io-write", "cannot write " + tmp);
-      return kExitBadInput;
-    }
-  }
-  if (PrintDiagnostics(sink) || !s) {
-    std::remove(tmp.c_str());
+  // Streamed straight to a unique temporary file beside the output (OutputFile), renamed
+  // when complete: memory does not grow with the programme, and a failed or interrupted run
+  // leaves nothing behind.
+  std::string err;
+  auto out = OutputFile::Open(a.output, err);
+  if (!out) {
+    PrintError("io-write", err);
     return kExitBadInput;
   }
-  if (std::rename(tmp.c_str(), a.output.c_str()) != 0) {
-    PrintError("io-write", "cannot rename " + tmp + " to " + a.output);
+  const std::optional<planner::RasterSummary> s =
+      planner::WriteRasterProgram(*scene, o, *dialect, out->Stream(), sink);
+  if (PrintDiagnostics(sink) || !s) return kExitBadInput;  // the temporary goes with `out`
+  if (err = out->Commit(); !err.empty()) {
+    PrintError("io-write", err);
     return kExitBadInput;
   }
   std::string heads;
@@ -398,6 +403,7 @@ void AddPlanCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("-o,--output", args->output, "Programme file to write")->required();
   cmd->add_option("--dialect", args->dialect,
                   "Dialect YAML file (default: the built-in dialect, models/dialect/default.yaml)");
+  AddScenePathFlag(*cmd);
   cmd->callback([args, &exit_code] { exit_code = RunPlanStitch(*args); });
 
   auto afp = std::make_shared<PlanAfpArgs>();
@@ -422,6 +428,7 @@ void AddPlanCommand(CLI::App& app, int& exit_code) {
       LengthUnit::kMillimetre, LengthRange::kPositive, "Point spacing along the course", "5mm");
   afp_cmd->add_option("-o,--output", afp->output, "Programme file to write")->required();
   afp_cmd->add_option("--csv", afp->csv, "Per-point CSV (alpha, tangent, inclination, B, C)");
+  AddScenePathFlag(*afp_cmd);
   afp_cmd->callback([afp, &exit_code] { exit_code = RunPlanAfp(*afp); });
 
   auto ras = std::make_shared<PlanRasterArgs>();
@@ -452,6 +459,7 @@ void AddPlanCommand(CLI::App& app, int& exit_code) {
                       "Stitch only u_min,v_min,u_max,v_max (part frame)");
   ras_cmd->add_option("-o,--output", ras->output, "Programme file to write")->required();
   ras_cmd->add_option("--dialect", ras->dialect, "Dialect YAML file (default: built-in)");
+  AddScenePathFlag(*ras_cmd);
   ras_cmd->callback([ras, &exit_code] { exit_code = RunPlanRaster(*ras); });
 }
 

@@ -8,9 +8,18 @@
 #include "stitchsim/program/reader.h"
 
 namespace stitchsim::app {
+namespace {
+
+// More points than a picture can show are thinned (every other one dropped, then every
+// fourth taken, ...): each drawn point costs the software renderer ~100 KB, so a programme of
+// any length draws in bounded memory (3000 points: ~600 MB at most).
+constexpr std::size_t kMaxOverlayPoints = 3000;
+
+}  // namespace
 
 std::optional<ProgramOverlay> ProgramStitchOverlay(const LoadedScene& /*ls*/,
                                                    const std::string& program_file) {
+  if (!ProgramInputOk(program_file)) return std::nullopt;
   std::ifstream in(program_file, std::ios::binary);
   if (!in) {
     PrintError("io-missing-file", "cannot open programme " + program_file);
@@ -24,6 +33,7 @@ std::optional<ProgramOverlay> ProgramStitchOverlay(const LoadedScene& /*ls*/,
   program::ModalState state(dialect, program_file, sink);
   program::Block block;
   ProgramOverlay out;
+  std::size_t stride = 1, seen = 0;
   while (reader.Next(block)) {
     const program::Step& step = state.Update(block);
     if (!step.is_move) continue;
@@ -44,8 +54,16 @@ std::optional<ProgramOverlay> ProgramStitchOverlay(const LoadedScene& /*ls*/,
     }
     const auto& u_now = s[program::Axis::kDrive];
     const auto& u_before = state.Previous()[program::Axis::kDrive];
-    if (out.stitch_points_part_mm.empty() || (u_now && (!u_before || *u_now != *u_before))) {
-      out.stitch_points_part_mm.push_back(p);
+    auto& points = out.stitch_points_part_mm;
+    if (points.empty() || (u_now && (!u_before || *u_now != *u_before))) {
+      if (seen++ % stride != 0) continue;
+      if (points.size() == kMaxOverlayPoints) {
+        for (std::size_t i = 0; 2 * i < points.size(); ++i) points[i] = points[2 * i];
+        points.resize((points.size() + 1) / 2);
+        stride *= 2;
+        if ((seen - 1) % stride != 0) continue;
+      }
+      points.push_back(p);
     }
   }
   if (PrintDiagnostics(sink)) return std::nullopt;

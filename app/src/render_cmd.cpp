@@ -56,13 +56,24 @@ Eigen::Isometry3d PathStartTool(const scene::Scene& scene, const scene::PathSpec
 
 std::vector<render::Overlay> PathOverlays(const scene::Scene& scene,
                                           const Eigen::Isometry3d& part_world_m, double radius_m) {
+  // Each overlay geom costs the software renderer ~100 KB: all paths together get at most
+  // kMaxPathSegments segments (one per 5 mm of a path, thinned to its share), and beyond
+  // kMaxPathSegments / 2 paths an evenly spaced subset is drawn (at most ~3000 points).
+  constexpr std::size_t kMaxPathSegments = 2000;
+  const std::size_t count = scene.paths.size();
+  const std::size_t stride =
+      std::max<std::size_t>(1, (2 * count + kMaxPathSegments - 1) / kMaxPathSegments);
+  const std::size_t drawn = (count + stride - 1) / stride;
+  const int share = static_cast<int>(std::max<std::size_t>(1, kMaxPathSegments / drawn));
   std::vector<render::Overlay> out;
-  for (const auto& path : scene.paths) {
+  for (std::size_t k = 0; k < count; k += stride) {
+    const auto& path = scene.paths[k];
     geom::SurfacePath sp(*scene.surface, *path.curve);
     render::Overlay o;
     o.label = "path";
     o.radius_m = radius_m;
-    const int n = std::clamp(static_cast<int>(sp.Length() / 5.0), 16, 2000);
+    const int n =
+        std::clamp(static_cast<int>(std::min(sp.Length() / 5.0, 1e6)), std::min(16, share), share);
     for (int i = 0; i <= n; ++i) {
       const geom::PathPoint p = sp.AtArcLength(sp.Length() * i / n);
       // Drawn on top of the preform so it is not hidden inside it.
@@ -262,7 +273,12 @@ void AddRenderCommand(CLI::App& app, int& exit_code) {
                   "Also write the pixel coverage of robot, head, mold, preform, paths... (JSON)");
   cmd->add_option("--view", args->view, "overview | head | part")
       ->check(CLI::IsMember({"overview", "head", "part"}));
+  AddScenePathFlag(*cmd);
   cmd->callback([args, &exit_code] {
+    if (!OutputsDistinct({{"--output", args->output}, {"--coverage-json", args->coverage_json}})) {
+      exit_code = kExitBadInput;
+      return;
+    }
     auto ls = LoadSceneAndRobot(args->scene);
     if (!ls) {
       exit_code = kExitBadInput;

@@ -99,12 +99,14 @@ int WriteOverview(const LoadedScene& ls, const verify::Verifier& v, const std::s
   sets[2].label = "stitch_error";
   sets[2].rgba = kError;
   const auto& marks = v.StitchMarks();
-  const std::size_t stride = std::max<std::size_t>(1, marks.size() / 6000);
+  // Each drawn point costs the software renderer ~100 KB: at most kMaxPerSet per verdict.
+  constexpr std::size_t kMaxPerSet = 1000;
+  const std::size_t stride = std::max<std::size_t>(1, marks.size() / kMaxPerSet);
   for (std::size_t i = 0; i < marks.size(); ++i) {
     const auto& m = marks[i];
     if (m.severity == 0 && i % stride != 0) continue;
     auto& set = sets[std::min<int>(m.severity, 2)];
-    if (set.points_part_mm.size() < 6000)
+    if (set.points_part_mm.size() < kMaxPerSet)
       set.points_part_mm.push_back(m.position_mm.cast<double>());
   }
   for (auto& s : sets) {
@@ -155,12 +157,14 @@ int WriteCloseUp(const LoadedScene& ls, const sim::CellSetup& cell, const verify
 }
 
 int RunVerify(const VerifyArgs& a) {
+  if (!OutputsDistinct({{"--report", a.report_json}, {"--junit", a.junit}})) return kExitBadInput;
   auto ls = LoadSceneAndRobot(a.scene);
   if (!ls) return kExitBadInput;
   const std::optional<program::Dialect> custom = DialectOption(a.dialect);
   if (!custom) return kExitBadInput;
   const program::Dialect& dialect = *custom;
   // The programme is read once, front to back (a pipe works): the header first, then the run.
+  if (!ProgramInputOk(a.program)) return kExitBadInput;
   std::ifstream in(a.program, std::ios::binary);
   if (!in) {
     PrintError("io-missing-file", "cannot open programme " + a.program);
@@ -253,6 +257,7 @@ void AddVerifyCommand(CLI::App& app, int& exit_code) {
                   "Dialect YAML file (default: the built-in dialect, models/dialect/default.yaml)");
   cmd->add_option("--snapshots", args->snapshots,
                   "Write overview.png and <rule>.png close-ups into this folder");
+  AddScenePathFlag(*cmd);
   cmd->add_flag("--no-collision", args->no_collision,
                 "Skip the FCL collision checks (collision.* rules)");
   cmd->add_flag("--allow-mismatch", args->allow_mismatch,

@@ -10,6 +10,9 @@
 #include <tuple>
 #include <vector>
 
+#include "stitchsim/common/files.h"
+#include "stitchsim/common/limits.h"
+
 namespace stitchsim::geom {
 namespace {
 
@@ -37,12 +40,13 @@ bool Finite(const Eigen::Vector3d& v) { return v.allFinite(); }
 
 bool ReadStl(const std::filesystem::path& path, double scale_to_mm, TriangleMesh& mesh,
              std::string& error, double weld_tol) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    error = "cannot open STL file " + path.string();
+  // A regular file within the size cap: a directory, FIFO or /dev/zero is refused up front.
+  FileText file = ReadRegularFile(path, limits::kMaxStlFileBytes);
+  if (!file.ok()) {
+    error = "cannot read STL file: " + file.error;
     return false;
   }
-  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string& bytes = file.text;
   TriangleMesh out;
   Welder welder{weld_tol, scale_to_mm, {}, &out};
   auto add_triangle = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b,
@@ -72,8 +76,7 @@ bool ReadStl(const std::filesystem::path& path, double scale_to_mm, TriangleMesh
       add_triangle(v[0], v[1], v[2]);
     }
   } else {
-    std::string text(bytes.begin(), bytes.end());
-    std::istringstream ss(text);
+    std::istringstream ss(bytes);
     std::string word;
     if (!(ss >> word) || word != "solid") {
       error = "not an STL file (neither binary nor ASCII 'solid'): " + path.string();

@@ -6,6 +6,7 @@
 #include <ostream>
 
 #include "detail/program_text.h"
+#include "stitchsim/common/limits.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/block.h"
 #include "stitchsim/program/writer.h"
@@ -189,6 +190,16 @@ std::optional<AfpPlan> PlanAfpCourse(const scene::Scene& scene, const scene::Pat
   plan.length_mm = lifted.Length();
   if (!(plan.length_mm > options.point_spacing_mm * 1e-6)) {
     sink.Error("plan-path-too-short", where, "AFP course '" + plan.course_name + "' is empty");
+    return std::nullopt;
+  }
+  if (plan.length_mm / options.point_spacing_mm >
+      static_cast<double>(limits::kMaxAfpPointsPerCourse)) {
+    sink.Error("plan-too-many-points", where,
+               "AFP course '" + plan.course_name + "' (" + std::to_string(plan.length_mm) +
+                   " mm) at " + std::to_string(options.point_spacing_mm) +
+                   " mm spacing would take more than " +
+                   std::to_string(limits::kMaxAfpPointsPerCourse) +
+                   " points, the limit for one course (docs/limits.md)");
     return std::nullopt;
   }
   const int segments =

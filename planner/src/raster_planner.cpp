@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "detail/program_text.h"
+#include "stitchsim/common/files.h"
+#include "stitchsim/common/limits.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/block.h"
 #include "stitchsim/program/writer.h"
@@ -305,14 +307,13 @@ std::optional<UserCodeLibrary> ParseUserCodeLibrary(std::string_view yaml,
 std::optional<UserCodeLibrary> LoadUserCodeLibrary(const std::filesystem::path& file,
                                                    const program::Dialect& dialect,
                                                    DiagnosticSink& sink) {
-  std::ifstream in(file);
-  if (!in) {
-    sink.Error("library-unreadable", {file.string(), 0, 0}, "cannot read the code library");
+  const FileText text = ReadRegularFile(file, limits::kMaxYamlFileBytes);
+  if (!text.ok()) {
+    sink.Error("library-unreadable", {file.string(), 0, 0},
+               "cannot read the code library: " + text.error);
     return std::nullopt;
   }
-  std::stringstream text;
-  text << in.rdbuf();
-  return ParseUserCodeLibrary(text.str(), file.string(), dialect, sink);
+  return ParseUserCodeLibrary(text.text, file.string(), dialect, sink);
 }
 
 // ---- planning -------------------------------------------------------------------------------
@@ -414,6 +415,18 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
   box.max().array() -= o.edge_margin_mm;
   if (box.isEmpty() || box.sizes().minCoeff() <= 0) {
     sink.Error("plan-raster-empty-region", where, "the stitch region is empty");
+    return std::nullopt;
+  }
+  // Stitches on the flat region (the surface adds slope, at most a few per cent here): a tiny
+  // pitch must not write a programme that fills the disk.
+  const double flat_stitches =
+      (box.sizes().x() / o.pitch_mm + 1.0) * (box.sizes().y() / o.row_spacing_mm + 1.0);
+  if (flat_stitches > static_cast<double>(limits::kMaxRasterStitches)) {
+    sink.Error("plan-raster-too-many-stitches", where,
+               "pitch " + Num(o.pitch_mm) + " mm and row spacing " + Num(o.row_spacing_mm) +
+                   " mm over this region make about " + Num(flat_stitches) +
+                   " stitches, more than the limit of " +
+                   std::to_string(limits::kMaxRasterStitches) + " (docs/limits.md)");
     return std::nullopt;
   }
 

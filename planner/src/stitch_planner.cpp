@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "detail/program_text.h"
+#include "stitchsim/common/limits.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/block.h"
 #include "stitchsim/program/writer.h"
@@ -46,6 +47,14 @@ std::optional<StitchPathPlanner> StitchPathPlanner::Create(const scene::Scene& s
   if (!(nominal > 0.0) || !std::isfinite(nominal)) {
     sink.Error("plan-bad-stitch-length", path.where,
                "nominal stitch length must be a positive finite number");
+    return std::nullopt;
+  }
+  if (p.path_.Length() / nominal > static_cast<double>(limits::kMaxStitchesPerPath) + 1.0) {
+    sink.Error("plan-too-many-stitches", path.where,
+               "path '" + path.name + "' (" + std::to_string(p.path_.Length()) +
+                   " mm) would take more than " + std::to_string(limits::kMaxStitchesPerPath) +
+                   " stitches of " + std::to_string(nominal) +
+                   " mm, the limit for one path (docs/limits.md)");
     return std::nullopt;
   }
   const auto n = geom::StitchCount(p.path_.Length(), nominal);

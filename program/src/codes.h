@@ -6,6 +6,7 @@ namespace stitchsim::program::codes {
 // Lexical: characters, numbers, words.
 inline constexpr char kInvalidCharacter[] = "gcode-invalid-character";
 inline constexpr char kLineTooLong[] = "gcode-line-too-long";
+inline constexpr char kTooManyLines[] = "gcode-too-many-lines";
 inline constexpr char kUnknownWord[] = "gcode-unknown-word";
 inline constexpr char kMissingLetter[] = "gcode-missing-letter";
 inline constexpr char kMissingValue[] = "gcode-missing-value";

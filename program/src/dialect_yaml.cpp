@@ -14,6 +14,7 @@
 #include "codes.h"
 #include "dialect_validate.h"
 #include "stitchsim/common/files.h"
+#include "stitchsim/common/limits.h"
 #include "stitchsim/program/dialect.h"
 
 namespace stitchsim::program {
@@ -278,12 +279,13 @@ std::optional<Dialect> LoadDialectFromString(std::string_view yaml, const std::s
 }
 
 std::optional<Dialect> LoadDialect(const std::filesystem::path& path, DiagnosticSink& sink) {
-  const std::optional<std::string> text = ReadFile(path);
-  if (!text) {
-    sink.Error(codes::kDialectFileNotFound, {path.string(), 0, 0}, "cannot read dialect file");
+  const FileText text = ReadRegularFile(path, limits::kMaxYamlFileBytes);
+  if (!text.ok()) {
+    sink.Error(codes::kDialectFileNotFound, {path.string(), 0, 0},
+               "cannot read dialect file: " + text.error);
     return std::nullopt;
   }
-  return LoadDialectFromString(*text, path.string(), sink);
+  return LoadDialectFromString(text.text, path.string(), sink);
 }
 
 }  // namespace stitchsim::program

@@ -84,11 +84,12 @@ std::string_view Trim(std::string_view s) {
 struct ProgramReader::Impl {
   enum class Phase { kBeforeStart, kOpened, kInProgram, kEnded };
 
-  Impl(std::istream& in_stream, const Dialect& d, std::string file, DiagnosticSink& s)
+  Impl(std::istream& in_stream, const Dialect& d, std::string file, DiagnosticSink& s, int max)
       : in(in_stream),
         dialect(d),
         file_name(std::move(file)),
         sink(s),
+        max_lines(max),
         chunk(new char[kChunkSize]) {
     assert(d.max_line_length > 0 && "validate the dialect before reading with it");
     for (std::size_t a = 0; a < kAxisCount; ++a) {
@@ -633,6 +634,12 @@ struct ProgramReader::Impl {
     std::string_view line;
     bool truncated = false;
     while (ReadLine(line, truncated)) {
+      if (line_number >= max_lines) {  // the counter (an int, like every line number) is full
+        sink.Error(codes::kTooManyLines, {file_name, line_number, 1},
+                   "the programme goes on past line " + std::to_string(max_lines) +
+                       ", the most one programme may have (docs/limits.md)");
+        break;
+      }
       ++line_number;
       if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
       if (phase == Phase::kEnded) {
@@ -658,6 +665,10 @@ struct ProgramReader::Impl {
       if (kind == LineKind::kBlock) return true;
     }
     done = true;
+    if (line_number >= max_lines) {
+      b.Clear();
+      return false;
+    }
     if (!any_words) {
       sink.Error(codes::kEmptyProgram, {file_name, had_opening ? opening_line : 1, 1},
                  "the programme has no blocks");
@@ -675,6 +686,7 @@ struct ProgramReader::Impl {
   const Dialect& dialect;
   std::string file_name;
   DiagnosticSink& sink;
+  int max_lines;
   std::array<LetterInfo, 26> letters{};
   bool exponent_is_error = false;
 
@@ -697,8 +709,8 @@ struct ProgramReader::Impl {
 };
 
 ProgramReader::ProgramReader(std::istream& in, const Dialect& dialect, std::string file_name,
-                             DiagnosticSink& sink)
-    : impl_(std::make_unique<Impl>(in, dialect, std::move(file_name), sink)) {}
+                             DiagnosticSink& sink, int max_lines)
+    : impl_(std::make_unique<Impl>(in, dialect, std::move(file_name), sink, max_lines)) {}
 
 ProgramReader::~ProgramReader() = default;
 

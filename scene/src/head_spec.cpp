@@ -19,6 +19,19 @@ void ReadPositive(detail::YamlReader& r, const YAML::Node& map, std::string_view
   }
 }
 
+// A whole number in [lo, hi] into `out`; anything else (a fraction, 1e300) is reported, never
+// converted (a double beyond int's range is undefined behaviour to convert).
+void ReadCount(detail::YamlReader& r, const YAML::Node& node, double value, std::string_view key,
+               int lo, int hi, int& out) {
+  if (value >= lo && value <= hi && value == std::floor(value)) {
+    out = static_cast<int>(value);
+    return;
+  }
+  r.Error(node, "out-of-range",
+          std::string(key) + " must be a whole number from " + std::to_string(lo) + " to " +
+              std::to_string(hi) + ", got " + node.Scalar());
+}
+
 }  // namespace
 
 std::filesystem::path ResolveHeadFile(const std::string& name_or_path,
@@ -28,7 +41,8 @@ std::filesystem::path ResolveHeadFile(const std::string& name_or_path,
   return DataDir() / "models" / "heads" / (name_or_path + ".yaml");
 }
 
-std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, DiagnosticSink& sink) {
+std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, DiagnosticSink& sink,
+                                     const LoadOptions& options) {
   detail::YamlReader r(file, sink, "head");
   const std::size_t errors_before = sink.ErrorCount();
   auto root = r.LoadFile();
@@ -61,15 +75,15 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
     }
   }
   if (auto n = r.Child(*root, "tool_number", true)) {
-    if (auto v = r.Number(*n, "tool_number")) h.tool_number = static_cast<int>(*v);
+    if (auto v = r.Number(*n, "tool_number"))
+      ReadCount(r, *n, *v, "tool_number", 0, 999, h.tool_number);
   }
   if (auto n = r.Child(*root, "mjcf", true)) {
     if (auto s = r.String(*n, "mjcf")) {
-      h.mjcf = file.parent_path() / *s;
-      std::error_code ec;
-      if (!std::filesystem::exists(h.mjcf, ec)) {
-        r.Error(*n, "missing-file", "head MJCF not found: " + h.mjcf.string());
-      }
+      detail::FileRefPolicy policy;
+      policy.roots = {file.has_parent_path() ? file.parent_path() : ".", ModelsDir()};
+      policy.allow_outside = options.allow_outside_paths;
+      if (auto p = r.ReferencedFile(*n, *s, policy, "head MJCF")) h.mjcf = *p;
     }
   }
   if (auto tf = r.Child(*root, "tool_frame", true); tf && r.ExpectMap(*tf, "tool_frame")) {
@@ -151,9 +165,9 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
                  "layup_speed_mm_s", "rapid_speed_mm_s"},
                 "afp");
     auto num = [&](std::string_view key, double& out) { ReadPositive(r, *af, key, out); };
-    double tows = 16;
-    num("tows", tows);
-    h.afp.tows = static_cast<int>(tows);
+    if (auto n = r.Child(*af, "tows", true)) {
+      if (auto v = r.Number(*n, "tows")) ReadCount(r, *n, *v, "tows", 1, 64, h.afp.tows);
+    }
     num("tow_width_mm", h.afp.tow_width_mm);
     num("roller_radius_mm", h.afp.roller_radius_mm);
     num("min_steering_radius_mm", h.afp.min_steering_radius_mm);

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "stitchsim/common/files.h"
+#include "stitchsim/common/limits.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/geom/stl.h"
 #include "yaml_reader.h"
@@ -16,8 +17,11 @@ constexpr double kDeg = kPi / 180.0;
 
 class SceneLoader {
  public:
-  SceneLoader(const std::filesystem::path& file, DiagnosticSink& sink)
-      : r_(file, sink, "scene"), sink_(sink) {}
+  SceneLoader(const std::filesystem::path& file, DiagnosticSink& sink, const LoadOptions& options)
+      : r_(file, sink, "scene"), sink_(sink), options_(options) {
+    files_.roots = {file.has_parent_path() ? file.parent_path() : ".", ModelsDir()};
+    files_.allow_outside = options.allow_outside_paths;
+  }
 
   std::unique_ptr<Scene> Load() {
     const std::size_t errors_before = sink_.ErrorCount();
@@ -51,10 +55,10 @@ class SceneLoader {
     if (auto n = r_.Child(*root, "cell", false); n && r_.ExpectMap(*n, "cell")) {
       r_.CheckKeys(*n, {"urdf", "mjcf", "omit"}, "cell");
       if (auto u = r_.Child(*n, "urdf", false)) {
-        if (auto s = r_.String(*u, "cell.urdf")) scene->cell_urdf = RequireFile(*u, dir / *s);
+        if (auto s = r_.String(*u, "cell.urdf")) RequireFile(*u, *s, "cell URDF", scene->cell_urdf);
       }
       if (auto m = r_.Child(*n, "mjcf", false)) {
-        if (auto s = r_.String(*m, "cell.mjcf")) scene->cell_mjcf = RequireFile(*m, dir / *s);
+        if (auto s = r_.String(*m, "cell.mjcf")) RequireFile(*m, *s, "cell MJCF", scene->cell_mjcf);
       }
       if (auto o = r_.Child(*n, "omit", false)) ReadOmit(*o, *scene);
     }
@@ -65,7 +69,10 @@ class SceneLoader {
         if (!std::filesystem::exists(head_file, ec)) {
           r_.Error(*n, "unknown-head",
                    "unknown head '" + *s + "' (no head spec at " + head_file.string() + ")");
-        } else if (auto h = LoadHeadSpec(head_file, sink_)) {
+        } else if (std::filesystem::path(*s).has_extension() &&
+                   !r_.ReferencedFile(*n, *s, files_, "head spec")) {
+          // reported (a bare name is a bundled head, in the models folder)
+        } else if (auto h = LoadHeadSpec(head_file, sink_, options_)) {
           scene->head = std::move(*h);
         }
       }
@@ -74,10 +81,10 @@ class SceneLoader {
     scene->nominal_stitch_length_mm = scene->head.stitch.nominal_length_mm;
     scene->limits = scene->head.limits;
     ReadPart(*root, *scene);
-    ReadSurface(*root, *scene, dir);
+    ReadSurface(*root, *scene);
     ReadPreformAndMold(*root, *scene);
     ReadStitch(*root, *scene);
-    ReadConstraints(*root, *scene, dir);
+    ReadConstraints(*root, *scene);
     ReadPaths(*root, *scene);
     ReadLimits(*root, *scene);
     ReadRail(*root, *scene);
@@ -87,11 +94,10 @@ class SceneLoader {
   }
 
  private:
-  std::filesystem::path RequireFile(const YAML::Node& n, const std::filesystem::path& p) {
-    std::error_code ec;
-    if (!std::filesystem::exists(p, ec))
-      r_.Error(n, "missing-file", "file not found: " + p.string());
-    return p;
+  // The file `name` at `n` into `out` when it may be read (ReferencedFile); else reported.
+  void RequireFile(const YAML::Node& n, const std::string& name, std::string_view what,
+                   std::filesystem::path& out) {
+    if (auto p = r_.ReferencedFile(n, name, files_, what)) out = *p;
   }
 
   std::optional<double> LengthKey(const YAML::Node& map, std::string_view key, bool required,
@@ -146,7 +152,7 @@ class SceneLoader {
     scene.mount_to_part_m.linear() = geom::RotationFromEuler(geom::EulerOrder{}, rot * kDeg);
   }
 
-  void ReadSurface(const YAML::Node& root, Scene& scene, const std::filesystem::path& dir) {
+  void ReadSurface(const YAML::Node& root, Scene& scene) {
     auto s = r_.Child(root, "surface", true);
     if (!s || !r_.ExpectMap(*s, "surface")) return;
     auto type_node = r_.Child(*s, "type", true);
@@ -215,13 +221,9 @@ class SceneLoader {
       if (!f) return;
       geom::TriangleMesh mesh;
       std::string err;
-      const auto path = dir / *f;
-      std::error_code ec;
-      if (!std::filesystem::exists(path, ec)) {
-        r_.Error(*n, "missing-file", "STL file not found: " + path.string());
-        return;
-      }
-      if (!geom::ReadStl(path, MmPer(unit_), mesh, err)) {
+      const auto path = r_.ReferencedFile(*n, *f, files_, "STL file");
+      if (!path) return;
+      if (!geom::ReadStl(*path, MmPer(unit_), mesh, err)) {
         r_.Error(*n, "bad-mesh", err);
         return;
       }
@@ -252,7 +254,7 @@ class SceneLoader {
     }
   }
 
-  void ReadConstraints(const YAML::Node& root, Scene& scene, const std::filesystem::path& dir) {
+  void ReadConstraints(const YAML::Node& root, Scene& scene) {
     auto cs = r_.Child(root, "constraints", false);
     if (!cs) return;
     if (!cs->IsSequence()) {
@@ -302,14 +304,10 @@ class SceneLoader {
         if (!n) continue;
         auto f = r_.String(*n, "file");
         if (!f) continue;
-        const auto path = dir / *f;
-        std::error_code ec;
-        if (!std::filesystem::exists(path, ec)) {
-          r_.Error(*n, "missing-file", "STL file not found: " + path.string());
-          continue;
-        }
+        const auto path = r_.ReferencedFile(*n, *f, files_, "STL file");
+        if (!path) continue;
         std::string err;
-        if (!geom::ReadStl(path, MmPer(unit_), c.mesh, err)) {
+        if (!geom::ReadStl(*path, MmPer(unit_), c.mesh, err)) {
           r_.Error(*n, "bad-mesh", err);
           continue;
         }
@@ -327,6 +325,12 @@ class SceneLoader {
     if (!ps) return;
     if (!ps->IsSequence() || ps->size() == 0) {
       r_.Error(*ps, "type", "paths must be a non-empty list");
+      return;
+    }
+    if (ps->size() > static_cast<std::size_t>(limits::kMaxScenePaths)) {
+      r_.Error(*ps, "too-many-paths",
+               "the scene has " + std::to_string(ps->size()) + " paths, more than the limit of " +
+                   std::to_string(limits::kMaxScenePaths) + " (docs/limits.md)");
       return;
     }
     std::set<std::string> names;
@@ -538,6 +542,8 @@ class SceneLoader {
 
   detail::YamlReader r_;
   DiagnosticSink& sink_;
+  LoadOptions options_;
+  detail::FileRefPolicy files_;
   LengthUnit unit_ = LengthUnit::kMillimetre;
 };
 
@@ -560,8 +566,9 @@ const PathSpec* Scene::FindPath(const std::string& path_name) const {
   return nullptr;
 }
 
-std::unique_ptr<Scene> LoadScene(const std::filesystem::path& file, DiagnosticSink& sink) {
-  return SceneLoader(file, sink).Load();
+std::unique_ptr<Scene> LoadScene(const std::filesystem::path& file, DiagnosticSink& sink,
+                                 const LoadOptions& options) {
+  return SceneLoader(file, sink, options).Load();
 }
 
 }  // namespace stitchsim::scene

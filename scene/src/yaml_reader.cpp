@@ -3,7 +3,12 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <map>
 #include <system_error>
+#include <vector>
+
+#include "stitchsim/common/files.h"
+#include "stitchsim/common/limits.h"
 
 namespace stitchsim::scene::detail {
 namespace {
@@ -48,24 +53,84 @@ std::optional<double> ParseStrictNumber(std::string_view s, bool& not_finite) {
 }  // namespace
 
 std::optional<YAML::Node> YamlReader::LoadFile() {
-  std::error_code ec;
-  if (!std::filesystem::exists(file_, ec)) {
-    sink_.Error(prefix_ + "-missing-file", {file_.string(), 0, 0},
-                "file not found: " + file_.string());
+  FileText f = ReadRegularFile(file_, limits::kMaxYamlFileBytes);
+  if (!f.ok()) {
+    const char* code = f.problem == FileProblem::kMissing      ? "-missing-file"
+                       : f.problem == FileProblem::kTooLarge   ? "-file-too-large"
+                       : f.problem == FileProblem::kNotRegular ? "-not-a-file"
+                                                               : "-unreadable-file";
+    sink_.Error(prefix_ + code, {file_.string(), 0, 0},
+                f.problem == FileProblem::kMissing ? "file not found: " + file_.string() : f.error);
     return std::nullopt;
   }
   try {
-    YAML::Node root = YAML::LoadFile(file_.string());
+    YAML::Node root = YAML::Load(f.text);
     if (!root.IsDefined() || root.IsNull()) {
       sink_.Error(prefix_ + "-empty", {file_.string(), 1, 1}, "file is empty");
       return std::nullopt;
     }
+    if (!CheckDuplicateKeys(root)) return std::nullopt;
     return root;
   } catch (const YAML::Exception& e) {
     sink_.Error(prefix_ + "-yaml-syntax", {file_.string(), e.mark.line + 1, e.mark.column + 1},
                 "YAML syntax error: " + e.msg);
     return std::nullopt;
   }
+}
+
+bool YamlReader::CheckDuplicateKeys(const YAML::Node& root) {
+  bool ok = true;
+  std::vector<YAML::Node> pending{root};  // no recursion: nesting depth is the file's to choose
+  while (!pending.empty()) {
+    const YAML::Node node = pending.back();
+    pending.pop_back();
+    if (node.IsSequence()) {
+      for (const auto& item : node) pending.push_back(item);
+    } else if (node.IsMap()) {
+      std::map<std::string, YAML::Node> seen;
+      for (const auto& kv : node) {
+        pending.push_back(kv.second);
+        if (!kv.first.IsScalar()) continue;
+        const auto [at, fresh] = seen.emplace(kv.first.Scalar(), kv.first);
+        if (fresh) continue;
+        Error(kv.first, "duplicate-key",
+              "key '" + kv.first.Scalar() + "' appears twice in this mapping (first at line " +
+                  std::to_string(at->second.Mark().line + 1) + ")");
+        ok = false;
+      }
+    }
+  }
+  return ok;
+}
+
+std::optional<std::filesystem::path> YamlReader::ReferencedFile(const YAML::Node& node,
+                                                                const std::string& name,
+                                                                const FileRefPolicy& policy,
+                                                                std::string_view what) {
+  namespace fs = std::filesystem;
+  const fs::path p = fs::path(name).is_absolute() ? fs::path(name) : file_.parent_path() / name;
+  bool inside = policy.allow_outside;
+  for (const auto& root : policy.roots) inside = inside || IsInsideFolder(p, root);
+  if (!inside) {
+    std::string folders;
+    for (const auto& root : policy.roots)
+      folders += (folders.empty() ? "" : " or ") + root.string();
+    Error(node, "path-outside",
+          std::string(what) + " '" + name + "' lies outside " + folders +
+              " (symlinks resolved); move it there, or pass --allow-outside-paths");
+    return std::nullopt;
+  }
+  std::error_code ec;
+  const fs::file_status st = fs::status(p, ec);
+  if (!fs::exists(st)) {
+    Error(node, "missing-file", std::string(what) + " not found: " + p.string());
+    return std::nullopt;
+  }
+  if (!fs::is_regular_file(st)) {
+    Error(node, "not-a-file", std::string(what) + " " + p.string() + " is not a regular file");
+    return std::nullopt;
+  }
+  return p;
 }
 
 SourceLocation YamlReader::At(const YAML::Node& node) const {

@@ -10,19 +10,36 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "stitchsim/common/diagnostics.h"
 #include "stitchsim/common/units.h"
 
 namespace stitchsim::scene::detail {
 
+/// Where files named inside a YAML file may lie: in one of `roots` (symlinks resolved),
+/// anywhere when `allow_outside`.
+struct FileRefPolicy {
+  std::vector<std::filesystem::path> roots;
+  bool allow_outside = false;
+};
+
 class YamlReader {
  public:
   YamlReader(std::filesystem::path file, DiagnosticSink& sink, std::string prefix)
       : file_(std::move(file)), sink_(sink), prefix_(std::move(prefix)) {}
 
-  /// Parses the whole file; reports missing file / syntax errors.
+  /// Parses the whole file (a regular file within limits::kMaxYamlFileBytes); reports a
+  /// missing or unreadable file, syntax errors and keys given twice in one mapping.
   std::optional<YAML::Node> LoadFile();
+
+  /// The file `name` given at `node` (relative to this file's folder), when it exists, is a
+  /// regular file and lies where `policy` allows; else reported ("-path-outside",
+  /// "-missing-file", "-not-a-file") and nullopt.
+  std::optional<std::filesystem::path> ReferencedFile(const YAML::Node& node,
+                                                      const std::string& name,
+                                                      const FileRefPolicy& policy,
+                                                      std::string_view what);
 
   SourceLocation At(const YAML::Node& node) const;
   void Error(const YAML::Node& node, std::string_view code, std::string message);
@@ -52,6 +69,8 @@ class YamlReader {
   const std::string& Prefix() const { return prefix_; }
 
  private:
+  bool CheckDuplicateKeys(const YAML::Node& root);
+
   std::filesystem::path file_;
   DiagnosticSink& sink_;
   std::string prefix_;

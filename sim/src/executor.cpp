@@ -6,6 +6,7 @@
 #include <istream>
 #include <vector>
 
+#include "stitchsim/common/limits.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/modal_state.h"
 
@@ -64,6 +65,17 @@ class Executor {
     rec.head_retracted = after.head_retracted;
     const double dist = (to.tool.translation() - from.tool.translation()).norm();
     const double angle = geom::AngleBetween(from.tool.linear(), to.tool.linear());
+    // The samples this line needs, counted before any is taken: beyond the documented bound
+    // the line is sampled at its ends only, and the verifier makes it a finding.
+    const double coarse_needed =
+        std::ceil(std::max(dist / options_.max_step_mm, angle / options_.max_step_rad));
+    const double fine_needed = advancing ? std::ceil(std::max(dist / options_.in_preform_step_mm,
+                                                              angle / options_.in_preform_step_rad))
+                                         : 0.0;
+    const double events_needed = advancing ? 2.0 * (du / l + 2.0) : 0.0;
+    rec.samples_needed = coarse_needed + fine_needed + events_needed + 2.0;
+    rec.over_sample_limit = !(rec.samples_needed <= limits::kMaxSamplesPerLine);
+    const bool sampled = !rec.over_sample_limit;
     double duration = angle / options_.rotation_speed_rad_s;
     if (rec.rapid) {
       duration = std::max(duration, dist / options_.rapid_speed_mm_s);
@@ -79,18 +91,14 @@ class Executor {
     // Sample fractions: line ends, needle events, a coarse IK grid, a fine in-preform grid.
     fractions_.clear();
     events_.clear();
-    const int coarse = std::max(
-        1, static_cast<int>(
-               std::ceil(std::max(dist / options_.max_step_mm, angle / options_.max_step_rad))));
-    if (advancing) {
+    const int coarse = sampled ? std::max(1, static_cast<int>(coarse_needed)) : 1;
+    if (advancing && sampled) {
       entries_.clear();
       exits_.clear();
       PhaseCrossings(from.drive, to.drive, l, process_.phase_in, entries_);
       PhaseCrossings(from.drive, to.drive, l, process_.phase_out, exits_);
       // Fine samples wherever the needles are in.
-      const int fine =
-          std::max(1, static_cast<int>(std::ceil(std::max(dist / options_.in_preform_step_mm,
-                                                          angle / options_.in_preform_step_rad))));
+      const int fine = std::max(1, static_cast<int>(fine_needed));
       for (int i = 1; i < fine; ++i) {
         const double s = static_cast<double>(i) / fine;
         if (process::NeedlesIn(process_, process::CyclePhase(from.drive + s * du, l))) {
@@ -106,7 +114,7 @@ class Executor {
     for (std::size_t i = 0; i < fractions_.size(); ++i) {
       samples.emplace_back(fractions_[i], i < n_fine ? SampleEvent::kNone : SampleEvent::kLineEnd);
     }
-    if (advancing) {
+    if (advancing && sampled) {
       for (double s : entries_) samples.emplace_back(s, SampleEvent::kNeedleEntry);
       for (double s : exits_) samples.emplace_back(s, SampleEvent::kNeedleExit);
     }

@@ -219,5 +219,23 @@ TEST(program_parser, LineAtTheLimitIsAccepted) {
   EXPECT_EQ(blocks[1].comment, comment);
 }
 
+// The line counter is an int: a programme longer than the limit (2e9 lines by default, here
+// 4) is one error at the last line counted, and reading stops there; it never wraps.
+TEST(program_parser, MoreLinesThanTheLimitStopWithOneError) {
+  std::istringstream in("G21 G90\nG1 X1 F100\nG1 X2\nG1 X3\nG1 X4\nG1 X5\n");
+  DiagnosticSink sink;
+  ProgramReader reader(in, Dialect::Default(), "long.nc", sink, 4);
+  Block block;
+  int blocks = 0;
+  while (reader.Next(block)) ++blocks;
+  EXPECT_EQ(blocks, 4);
+  ASSERT_EQ(sink.Diagnostics().size(), 1u) << testing::Describe(sink);
+  EXPECT_EQ(sink.Diagnostics()[0].code, "gcode-too-many-lines");
+  EXPECT_EQ(sink.Diagnostics()[0].location.line, 4);
+  EXPECT_EQ(reader.LineCount(), 4);
+  EXPECT_FALSE(reader.Next(block));
+  EXPECT_EQ(sink.Diagnostics().size(), 1u);
+}
+
 }  // namespace
 }  // namespace stitchsim::program

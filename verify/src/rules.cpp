@@ -493,6 +493,7 @@ std::unique_ptr<Rule> MakeCollisionRobotCellRule(const RuleContext& ctx);
 std::unique_ptr<Rule> MakeCollisionClearanceRule(const RuleContext& ctx);
 std::unique_ptr<Rule> MakeConstraintCrossingRule(const RuleContext& ctx);  // constraint_rules.cpp
 std::unique_ptr<Rule> MakeStitchCountRule(const RuleContext& ctx);         // program_rules.cpp
+std::unique_ptr<Rule> MakeLineSamplingRule();                              // sampling_rule.cpp
 
 std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   std::vector<std::unique_ptr<Rule>> rules;
@@ -514,6 +515,7 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   rules.push_back(std::make_unique<SyncRule>(ctx));
   if (stitching) rules.push_back(std::make_unique<EmptyProgramRule>());
   if (stitching && ctx.declared_stitches) rules.push_back(MakeStitchCountRule(ctx));
+  rules.push_back(MakeLineSamplingRule());
   if (ctx.collision != nullptr) rules.push_back(MakeCollisionHeadMoldRule(ctx));
   if (ctx.collision != nullptr) rules.push_back(MakeCollisionRobotCellRule(ctx));
   if (ctx.collision != nullptr) rules.push_back(MakeCollisionClearanceRule(ctx));

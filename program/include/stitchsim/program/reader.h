@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "stitchsim/common/diagnostics.h"
+#include "stitchsim/common/limits.h"
 #include "stitchsim/program/block.h"
 #include "stitchsim/program/dialect.h"
 
@@ -39,8 +40,9 @@ struct ProgramHeader {
 /// '%' marks are not returned. `dialect` and `sink` must outlive the reader.
 class ProgramReader {
  public:
+  /// More than `max_lines` lines is gcode-too-many-lines (reported once, reading stops).
   ProgramReader(std::istream& in, const Dialect& dialect, std::string file_name,
-                DiagnosticSink& sink);
+                DiagnosticSink& sink, int max_lines = limits::kMaxProgramLines);
   ~ProgramReader();
   ProgramReader(const ProgramReader&) = delete;
   ProgramReader& operator=(const ProgramReader&) = delete;

@@ -72,8 +72,17 @@ struct HeadSpec {
   bool IsStitching() const { return kind != HeadKind::kAfp; }
 };
 
+/// How scene and head-spec files may name other files.
+struct LoadOptions {
+  /// Files named by a scene must lie in the scene's folder tree or the models folder
+  /// (ModelsDir()), those named by a head spec in its folder tree or the models folder,
+  /// symlinks resolved; true lifts that (`--allow-outside-paths`).
+  bool allow_outside_paths = false;
+};
+
 /// Loads a head spec; diagnostics (file:line:col, codes "head-...") on bad input.
-std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, DiagnosticSink& sink);
+std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, DiagnosticSink& sink,
+                                     const LoadOptions& options = {});
 
 /// models/heads/<name>.yaml under the data dir, or `name_or_path` itself if it is a path.
 std::filesystem::path ResolveHeadFile(const std::string& name_or_path,

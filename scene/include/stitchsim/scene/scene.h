@@ -79,6 +79,8 @@ inline constexpr CellFixture kCellFixtures[] = {{"table", "table"}, {"rotator", 
 
 /// Loads and validates a scene. Every problem is a diagnostic with file:line:col and a
 /// stable code ("scene-..."); returns nullptr if any error was reported.
-std::unique_ptr<Scene> LoadScene(const std::filesystem::path& file, DiagnosticSink& sink);
+/// Files it names must lie where `options` allows (docs/scene-format.md).
+std::unique_ptr<Scene> LoadScene(const std::filesystem::path& file, DiagnosticSink& sink,
+                                 const LoadOptions& options = {});
 
 }  // namespace stitchsim::scene

@@ -50,6 +50,11 @@ struct LineRecord {
   double feed_mm_per_min = 0.0;                   ///< modal F (0 if none)
   bool stitching = false;                         ///< M10 in force
   bool head_retracted = false;                    ///< M20 in force
+  /// Trace samples the line needs at the executor's steps (grid, in-preform, needle events).
+  double samples_needed = 0.0;
+  /// samples_needed > limits::kMaxSamplesPerLine: the line was sampled at its ends only and
+  /// is a finding of program.line_sampling (not checked further).
+  bool over_sample_limit = false;
 };
 
 /// Receives the trace as it is produced.
