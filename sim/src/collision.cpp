@@ -592,7 +592,10 @@ void FclWorld::CheckPair(int i, int j, CollisionResult& result) const {
                                                                 : ContactClass::kRobotCell;
   out.body_a = r.name;
   out.body_b = o.name;
-  out.depth_m = std::isfinite(c.penetration_depth) ? std::abs(c.penetration_depth) : 0.0;
+  out.depth_measured = !a.mesh_m && !b.mesh_m;
+  out.depth_m = out.depth_measured && std::isfinite(c.penetration_depth)
+                    ? std::abs(c.penetration_depth)
+                    : 0.0;
   out.point_world_m = c.pos;
   result.contacts.push_back(std::move(out));
 }
@@ -608,15 +611,16 @@ void FclWorld::SlabContact(const Body& r, const Body& p, const detail::Slab& sla
   if (!hit && !(may_be_inside && detail::InsideSlab(r_world.translation(), part_world, slab))) {
     return;
   }
+  // The mesh detects (its chords may stand up to the tessellation tolerance proud of the
+  // surface); the surface measures. No sample below the head-side face: no penetration.
+  const auto deepest = detail::DeepestInSlab(r.depth_samples, r_world, part_world, slab);
+  if (!deepest || deepest->depth_m <= 0.0) return;
   Contact out;
   out.kind = ContactClass::kHeadPart;
   out.body_a = r.name;
   out.body_b = p.name;
-  out.point_world_m = r_world.translation();
-  if (const auto deepest = detail::DeepestInSlab(r.depth_samples, r_world, part_world, slab)) {
-    out.depth_m = deepest->depth_m;
-    out.point_world_m = deepest->point_world_m;
-  }
+  out.depth_m = deepest->depth_m;
+  out.point_world_m = deepest->point_world_m;
   result.contacts.push_back(std::move(out));
 }
 
