@@ -430,9 +430,21 @@ TEST(PlanAfpCommand, InclineAutoHandsOverAProgrammeThatVerifies) {
   // Rejected candidates name the rule and the line.
   EXPECT_NE(plan.out.find("incline 0.000 deg: rejected: "), std::string::npos) << Describe(plan);
   EXPECT_NE(plan.out.find(" at line "), std::string::npos) << Describe(plan);
-  const RunResult verify = RunCli({"verify", programme.string(), "--scene", scene});
+  const fs::path report = TempDir() / "afp_auto.json";
+  const RunResult verify =
+      RunCli({"verify", programme.string(), "--scene", scene, "--report", report.string()});
   EXPECT_EQ(verify.exit_code, 0) << Describe(plan) << Describe(verify);
   EXPECT_EQ(verify.out.rfind("PASS", 0), 0u) << Describe(verify);
+  // The verifier's own measure of the lowered programme: the fastest joint just under its
+  // limit (the feed was scaled to 95 % of it), not slowed far more than needed.
+  const json j = json::parse(ReadText(report));
+  for (const auto& rule : j["rules"]) {
+    if (rule["id"] != "kin.joint_speed") continue;
+    EXPECT_LE(rule["worst"]["value"].get<double>(), 100.0);
+    if (plan.out.find("feed lowered on") != std::string::npos) {
+      EXPECT_GE(rule["worst"]["value"].get<double>(), 90.0);
+    }
+  }
   // Where the feed was lowered it is written in the programme and restored after: every F is
   // at most the layup speed (200 mm/s), and the last F is the layup speed again.
   const std::string text = ReadText(programme);

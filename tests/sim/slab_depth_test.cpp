@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -37,7 +38,8 @@ struct Probe {
 };
 
 // A flat plate (mold `mold_depth_mm`, preform 2 mm) on the table and a head made of `geom`.
-Probe MakeProbe(const std::string& name, const std::string& geom, double mold_depth_mm) {
+Probe MakeProbe(const std::string& name, const std::string& geom, double mold_depth_mm,
+                const std::string& extra_scene = "") {
   const fs::path dir = fs::temp_directory_path() / "stitchsim_slab_depth_test";
   fs::create_directories(dir);
   std::ifstream head_in(kSource / "models" / "heads" / "afp.yaml");
@@ -55,7 +57,8 @@ Probe MakeProbe(const std::string& name, const std::string& geom, double mold_de
       << "\npart:\n  mount: table\n  position: [0, 0, 50]\n"
          "surface:\n  type: plane\n  size: [600, 600]\n"
          "preform:\n  thickness: 2\nmold:\n  depth: "
-      << mold_depth_mm << "\npaths:\n  - {name: row, type: line, from: [-100, 0], to: [100, 0]}\n";
+      << mold_depth_mm << "\n"
+      << extra_scene << "paths:\n  - {name: row, type: line, from: [-100, 0], to: [100, 0]}\n";
   Probe p;
   DiagnosticSink sink;
   p.scene = scene::LoadScene(dir / (name + "_scene.yaml"), sink);
@@ -87,7 +90,9 @@ std::string BallGeom() {
 // The probe's contact with `body` with the tool point `below_mm` under the surface (part
 // origin), the tool z along the surface normal tilted `tilt_deg` about the tool x axis.
 // -1 when there is none.
-double DepthMm(Probe& p, double below_mm, double tilt_deg, const std::string& body = "mold") {
+// The probe's contact with `body`, nullopt when there is none.
+std::optional<Contact> ContactAt(Probe& p, double below_mm, double tilt_deg,
+                                 const std::string& body) {
   Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
   tool.translation() = Eigen::Vector3d(0, 0, -below_mm);
   tool.linear() = Eigen::AngleAxisd(tilt_deg * kDeg, Eigen::Vector3d::UnitX()).toRotationMatrix();
@@ -99,10 +104,18 @@ double DepthMm(Probe& p, double below_mm, double tilt_deg, const std::string& bo
   for (const Contact& c : r.contacts) {
     if (c.body_a == "head:probe" && c.body_b == body) {
       EXPECT_EQ(c.kind, ContactClass::kHeadPart);
-      return c.depth_m * 1000.0;
+      return c;
     }
   }
-  return -1.0;
+  return std::nullopt;
+}
+
+// Its depth in mm, -1 when there is no contact.
+double DepthMm(Probe& p, double below_mm, double tilt_deg, const std::string& body = "mold") {
+  const std::optional<Contact> c = ContactAt(p, below_mm, tilt_deg, body);
+  if (!c) return -1.0;
+  EXPECT_TRUE(c->depth_measured);
+  return c->depth_m * 1000.0;
 }
 
 // A box tilted about its x axis dips its lower edge hy sin(tilt) below the tool point: with
@@ -162,6 +175,37 @@ TEST(SlabDepthTest, BodyWhollyInsideTheMoldIsReported) {
   Probe ball = MakeProbe("probe_ball", BallGeom(), 200.0);
   ASSERT_TRUE(ball.world);
   EXPECT_NEAR(DepthMm(ball, 100.0, 0.0), 100.0, 1e-6);
+}
+
+// Against a mesh constraint FCL's depth is one triangle's: the contact is reported, no depth.
+TEST(SlabDepthTest, MeshConstraintContactHasNoDepth) {
+  const fs::path stl = fs::temp_directory_path() / "stitchsim_slab_depth_test" / "cube.stl";
+  fs::create_directories(stl.parent_path());
+  {
+    // A 100 mm cube on the surface at the part origin, 12 outward triangles.
+    std::ofstream out(stl);
+    out << "solid cube\n";
+    const int f[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                          {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+    for (const auto& t : f) {
+      out << "facet normal 0 0 0\nouter loop\n";
+      for (int k : t) {
+        out << "vertex " << ((k & 1) ? 50 : -50) << " " << ((k & 2) ? 50 : -50) << " "
+            << ((k & 4) ? 100 : 0) << "\n";
+      }
+      out << "endloop\nendfacet\n";
+    }
+    out << "endsolid cube\n";
+  }
+  Probe p = MakeProbe("probe_box", BoxGeom(), 50.0,
+                      "constraints:\n  - {name: cube, type: mesh, file: " + stl.string() + "}\n");
+  ASSERT_TRUE(p.world);
+  // The probe's far face 50 mm above the surface: through the cube's top face.
+  const std::optional<Contact> c = ContactAt(p, -50.0, 0.0, "constraint:cube");
+  ASSERT_TRUE(c);
+  EXPECT_FALSE(c->depth_measured);
+  EXPECT_EQ(c->depth_m, 0.0);
+  EXPECT_EQ(DepthMm(p, -50.0, 0.0), -1.0);  // clear of the mold
 }
 
 }  // namespace
