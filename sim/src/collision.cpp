@@ -58,8 +58,8 @@ struct Body {
   MjcfShape shape = MjcfShape::kBox;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();
   std::shared_ptr<const geom::TriangleMesh> mesh_m;  // part meshes, metres
-  std::optional<Obb> fitted;  // meshes: a box fitted to the vertices, geometry frame
-  std::vector<detail::DepthSample> depth_samples;  // robot bodies: for the slab depth
+  std::optional<Obb> fitted;    // meshes: a box fitted to the vertices, geometry frame
+  detail::DepthGeometry depth;  // robot bodies: where their slab depth is looked for
   std::unique_ptr<fcl::CollisionObjectd> object;
 };
 
@@ -367,7 +367,7 @@ bool FclWorld::Build(const scene::Scene& scene, DiagnosticSink& sink) {
       b.local = g.pose_in_link * Eigen::Translation3d(0, 0, -0.5);
     }
     b.geometry = MakePrimitive(b.shape, b.size);
-    if (b.group == Group::kRobot) b.depth_samples = detail::PrimitiveDepthSamples(b.shape, b.size);
+    if (b.group == Group::kRobot) b.depth = detail::PrimitiveDepthGeometry(b.shape, b.size);
     AddBody(std::move(b));
   }
   (void)rs535;
@@ -613,7 +613,7 @@ void FclWorld::SlabContact(const Body& r, const Body& p, const detail::Slab& sla
   }
   // The mesh detects (its chords may stand up to the tessellation tolerance proud of the
   // surface); the surface measures. No sample below the head-side face: no penetration.
-  const auto deepest = detail::DeepestInSlab(r.depth_samples, r_world, part_world, slab);
+  const auto deepest = detail::DeepestInSlab(r.depth, r_world, part_world, slab);
   if (!deepest || deepest->depth_m <= 0.0) return;
   Contact out;
   out.kind = ContactClass::kHeadPart;

@@ -39,7 +39,8 @@ struct Probe {
 
 // A flat plate (mold `mold_depth_mm`, preform 2 mm) on the table and a head made of `geom`.
 Probe MakeProbe(const std::string& name, const std::string& geom, double mold_depth_mm,
-                const std::string& extra_scene = "") {
+                const std::string& extra_scene = "",
+                const std::string& surface = "  type: plane\n  size: [600, 600]\n") {
   const fs::path dir = fs::temp_directory_path() / "stitchsim_slab_depth_test";
   fs::create_directories(dir);
   std::ifstream head_in(kSource / "models" / "heads" / "afp.yaml");
@@ -55,9 +56,8 @@ Probe MakeProbe(const std::string& name, const std::string& geom, double mold_de
       << "stitchsim_scene: 1\nname: " << name
       << "\nunits: mm\nhead: " << (dir / (name + ".yaml")).string()
       << "\npart:\n  mount: table\n  position: [0, 0, 50]\n"
-         "surface:\n  type: plane\n  size: [600, 600]\n"
-         "preform:\n  thickness: 2\nmold:\n  depth: "
-      << mold_depth_mm << "\n"
+         "surface:\n"
+      << surface << "preform:\n  thickness: 2\nmold:\n  depth: " << mold_depth_mm << "\n"
       << extra_scene << "paths:\n  - {name: row, type: line, from: [-100, 0], to: [100, 0]}\n";
   Probe p;
   DiagnosticSink sink;
@@ -157,6 +157,25 @@ TEST(SlabDepthTest, BallDepthEqualsTheHandValue) {
     for (double below : {1.0, 3.0, 8.0}) {
       const double hand = below - kBallRadiusMm * std::cos(tilt * kDeg) + kBallRadiusMm;
       EXPECT_NEAR(DepthMm(p, below, tilt), hand, 1e-6) << below << " mm, " << tilt << " deg";
+    }
+  }
+}
+
+// On a convex cylinder (radius R, axis R under the crown) the deepest point of the probe's
+// flat far face, tilted phi about the axis direction, is the foot of the perpendicular from
+// the axis, inside the face and off its grid: depth = R - (R - below) cos(phi).
+TEST(SlabDepthTest, BoxFaceDeepestPointOnAConvexCylinder) {
+  constexpr double kR = 300.0;
+  Probe p = MakeProbe("probe_box", BoxGeom(), 50.0, "",
+                      "  type: cylinder\n  radius: 300\n  side: outside\n  length: 600\n"
+                      "  arc_length: 400\n");
+  ASSERT_TRUE(p.world);
+  for (double tilt : {0.0, 1.0, 2.0, 3.0}) {
+    for (double below : {1.0, 3.0, 6.0}) {
+      // The foot point lies (R - below) sin(phi) from the face centre: inside its 20 mm.
+      ASSERT_LT((kR - below) * std::sin(tilt * kDeg), kBoxHalfMm[1]);
+      const double hand = kR - (kR - below) * std::cos(tilt * kDeg);
+      EXPECT_NEAR(DepthMm(p, below, tilt), hand, 0.01) << below << " mm, " << tilt << " deg";
     }
   }
 }
