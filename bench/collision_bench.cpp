@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "stitchsim/common/files.h"
+#include "stitchsim/planner/afp_planner.h"
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/program/dialect.h"
 #include "stitchsim/scene/scene.h"
@@ -50,10 +51,11 @@ struct Fixture {
 };
 
 // Poses for a stitching scene: its first path planned decoupled and executed. For the AFP head
-// (no stitch planner): the stitching poses of flat_straight, same cell, AFP head on.
+// (no stitch planner): the stitching poses of flat_straight, same cell, AFP head on; or the
+// scene's own AFP course at normal pressure.
 Fixture& Get(const std::string& scene_name, const std::string& poses_from) {
   static std::map<std::string, std::unique_ptr<Fixture>> cache;
-  auto& slot = cache[scene_name];
+  auto& slot = cache[scene_name + "|" + poses_from];
   if (slot) return *slot;
   slot = std::make_unique<Fixture>();
   Fixture& f = *slot;
@@ -67,13 +69,23 @@ Fixture& Get(const std::string& scene_name, const std::string& poses_from) {
   if (!f.world) Fail(sink);
   auto source = scene::LoadScene(DataDir() / "scenes" / (poses_from + ".yaml"), sink);
   if (!source) Fail(sink);
-  planner::StitchPlanOptions options;
-  options.mode = planner::Mode::kDecoupled;
-  auto plan = planner::StitchPathPlanner::Create(*source, source->paths.front(), options, sink);
-  if (!plan) Fail(sink);
   std::ostringstream text;
-  planner::WriteStitchProgram(*plan, *source, source->paths.front().name,
-                              program::Dialect::Default(), text);
+  if (source->head.IsStitching()) {
+    planner::StitchPlanOptions options;
+    options.mode = planner::Mode::kDecoupled;
+    auto plan = planner::StitchPathPlanner::Create(*source, source->paths.front(), options, sink);
+    if (!plan) Fail(sink);
+    planner::WriteStitchProgram(*plan, *source, source->paths.front().name,
+                                program::Dialect::Default(), text);
+  } else {
+    // The AFP course at normal pressure (--lay-angle 45 --incline 0): the feed module in
+    // the mold on most poses (slab contacts, docs/collision.md "Depth").
+    planner::AfpPlanOptions options;
+    options.lay_angle_rad = 45.0 * 3.14159265358979323846 / 180.0;
+    auto plan = planner::PlanAfpCourse(*source, nullptr, options, sink);
+    if (!plan) Fail(sink);
+    planner::WriteAfpProgram(*plan, *source, program::Dialect::Default(), text);
+  }
   std::istringstream in(text.str());
   const sim::CellSetup cell = sim::MakeCellSetup(*f.robot, *source);
   const process::ProcessModel model =
@@ -116,7 +128,8 @@ void Register() {
   };
   const Case cases[] = {{"rs535", "flat_straight", "flat_straight"},
                         {"rs566", "rs566_stringer_seam", "rs566_stringer_seam"},
-                        {"afp", "concave_cylinder_small", "flat_straight"}};
+                        {"afp", "concave_cylinder_small", "flat_straight"},
+                        {"afp_in_mold", "concave_cylinder_small", "concave_cylinder_small"}};
   for (const Case& c : cases) {
     for (bool clearance : {false, true}) {
       for (bool naive : {false, true}) {

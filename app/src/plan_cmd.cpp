@@ -7,20 +7,18 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <sstream>
 
+#include "afp_incline.h"
 #include "cli_common.h"
 #include "cli_options.h"
 #include "commands.h"
 #include "stitchsim/common/files.h"
-#include "stitchsim/geom/rotation.h"
 #include "stitchsim/planner/afp_planner.h"
 #include "stitchsim/planner/raster_planner.h"
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/program/dialect.h"
-#include "stitchsim/program/modal_state.h"
-#include "stitchsim/program/reader.h"
-#include "stitchsim/sim/cell.h"
 #ifdef STITCHSIM_HAVE_COLLISION
 #include "stitchsim/sim/collision.h"
 #endif
@@ -167,73 +165,6 @@ int WriteAfpOutputs(const scene::Scene& scene, const planner::AfpPlan& plan, con
   return plan.over_travel.empty() ? kExitOk : kExitFindings;
 }
 
-#ifdef STITCHSIM_HAVE_COLLISION
-/// Head/part interference of a candidate programme: parsed back from its text, each
-/// programmed pose solved (rail + arm) and checked. Poses between the points are the
-/// simulator's business (`stitchsim verify`).
-struct CandidateCheck {
-  bool clear = false;
-  std::string detail;  ///< why not clear
-  std::string error;   ///< the check itself failed (never read as "clear")
-};
-
-CandidateCheck CheckCandidate(const LoadedScene& ls, sim::CollisionWorld& world,
-                              const std::string& text) {
-  CandidateCheck out;
-  DiagnosticSink sink;
-  const program::Dialect& dialect = program::Dialect::Default();
-  const auto blocks = program::ParseString(text, dialect, "candidate.nc", sink);
-  program::ModalState state(dialect, "candidate.nc", sink);
-  const geom::EulerOrder order =
-      geom::ParseEulerOrder(dialect.euler_order).value_or(geom::EulerOrder{});
-  const sim::CellSetup cell = sim::MakeCellSetup(*ls.robot, *ls.scene);
-  sim::JointVector previous = sim::JointVector::Zero();
-  bool have_previous = false;
-  sim::CollisionOptions options;
-  options.compute_clearance = false;
-  for (const auto& b : blocks) {
-    const program::Step& step = state.Update(b);
-    if (!step.is_move) continue;
-    const auto& axes = state.State().axes;
-    const auto angles = state.AnglesRad();
-    if (!angles || !axes[0] || !axes[1] || !axes[2]) continue;
-    Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
-    tool.translation() = Eigen::Vector3d(*axes[0], *axes[1], *axes[2]);
-    tool.linear() =
-        geom::RotationFromEuler(order, Eigen::Vector3d((*angles)[0], (*angles)[1], (*angles)[2]));
-    const sim::ToolPoseSolution sol =
-        sim::SolveToolPose(cell, tool, 0.0, std::nullopt, have_previous ? &previous : nullptr);
-    if (sol.ik.status == sim::IkStatus::kUnreachable ||
-        sol.ik.status == sim::IkStatus::kJointLimit) {
-      out.detail = "line " + std::to_string(b.source_line) + ": IK " +
-                   std::string(sim::ToString(sol.ik.status)) + " (" + sol.ik.reason + ")";
-      return out;
-    }
-    previous = sol.ik.joints;
-    have_previous = true;
-    const sim::CollisionResult r = world.Check(sol.ik.joints, options);
-    if (!r.error.empty()) {
-      out.error = "line " + std::to_string(b.source_line) + ": " + r.error;
-      return out;
-    }
-    for (const sim::Contact& c : r.contacts) {
-      if (c.kind != sim::ContactClass::kHeadPart) continue;
-      char depth[32];
-      std::snprintf(depth, sizeof(depth), "%.2f", c.depth_m * 1000.0);
-      out.detail = "line " + std::to_string(b.source_line) + ": " + c.body_a + " in " + c.body_b +
-                   " by " + depth + " mm";
-      return out;
-    }
-  }
-  if (sink.HasErrors()) {
-    out.error = "the candidate programme did not parse back";
-    return out;
-  }
-  out.clear = true;
-  return out;
-}
-#endif
-
 int RunPlanAfpAuto(const PlanAfpArgs& a, const scene::PathSpec* path,
                    planner::AfpPlanOptions options) {
 #ifdef STITCHSIM_HAVE_COLLISION
@@ -243,38 +174,54 @@ int RunPlanAfpAuto(const PlanAfpArgs& a, const scene::PathSpec* path,
   auto world = sim::CollisionWorld::Create(*ls->scene, *ls->robot, sink);
   if (PrintDiagnostics(sink) || !world) return kExitBadInput;
   if (path != nullptr) path = ls->scene->FindPath(path->name);
-  // Candidates 0, +step, -step, +2 step, ... up to the maximum: the smallest lean either way.
-  const int steps = static_cast<int>(std::floor(a.incline_max_deg / a.incline_step_deg + 1e-9));
-  for (int k = 0; k <= 2 * steps; ++k) {
-    const int magnitude = (k + 1) / 2;
-    const double incline_deg = (k % 2 == 1 ? 1.0 : -1.0) * magnitude * a.incline_step_deg;
-    options.incline_rad = (k == 0 ? 0.0 : incline_deg) * kDegToRad;
-    auto plan = planner::PlanAfpCourse(*ls->scene, path, options, sink);
-    if (PrintDiagnostics(sink) || !plan) return kExitBadInput;
-    std::ostringstream text;
-    planner::WriteAfpProgram(*plan, *ls->scene, program::Dialect::Default(), text);
-    const CandidateCheck check = CheckCandidate(*ls, *world, text.str());
-    if (!check.error.empty()) {
-      PrintError("plan-collision-check", "incline " + Deg(options.incline_rad) +
-                                             " deg: interference check failed: " + check.error);
-      return kExitBadInput;
+  InclineSearchOptions search;
+  search.max_deg = a.incline_max_deg;
+  search.step_deg = a.incline_step_deg;
+  const InclineSearchResult r =
+      SearchAfpIncline(*ls, *world, path, options, search, sink, [](const InclineCandidate& c) {
+        if (c.pass) return;
+        std::printf("incline %s deg: rejected: %s\n", Deg(c.incline_rad).c_str(),
+                    c.failure.c_str());
+        std::fflush(stdout);
+      });
+  if (PrintDiagnostics(sink)) return kExitBadInput;
+  if (!r.error.empty()) {
+    PrintError("plan-incline-check", "--incline auto: " + r.error);
+    return kExitBadInput;
+  }
+  if (!r.plan) {
+    std::map<std::string, int> by_rule;  // first failing rule -> candidates
+    for (const auto& c : r.candidates) {
+      std::string rule = c.failure.substr(0, c.failure.find(' '));
+      if (!rule.empty() && rule.back() == ':') rule.pop_back();
+      ++by_rule[rule];
     }
-    if (check.clear) {
-      std::printf(
-          "incline auto: %s deg is the smallest clear inclination (B travel %s deg, "
-          "C travel %s deg)\n",
-          Deg(options.incline_rad).c_str(), Deg(plan->b_max_rad - plan->b_min_rad).c_str(),
-          Deg(plan->c_max_rad - plan->c_min_rad).c_str());
-      return WriteAfpOutputs(*ls->scene, *plan, a);
+    std::string why;
+    for (const auto& [rule, n] : by_rule) {
+      why += (why.empty() ? "" : ", ") + rule + " on " + std::to_string(n);
     }
-    std::printf("incline %s deg: not clear: %s\n", Deg(options.incline_rad).c_str(),
-                check.detail.c_str());
+    std::printf(
+        "error[plan-afp-no-clear-incline]: no inclination within +-%.3f deg gives a programme "
+        "that verifies with every rule (%zu tried; first failure: %s)\n",
+        a.incline_max_deg, r.candidates.size(), why.c_str());
+    return kExitFindings;
+  }
+  const planner::AfpPlan& plan = *r.plan;
+  const InclineCandidate& won = r.candidates.back();
+  std::string feeds = "feed as planned";
+  if (won.slowed_moves > 0) {
+    char buf[128];
+    std::snprintf(buf, sizeof(buf),
+                  "feed lowered on %d moves, to %.1f %% of the layup speed at least",
+                  won.slowed_moves, 100.0 * won.slowest_feed_fraction);
+    feeds = buf;
   }
   std::printf(
-      "error[plan-afp-no-clear-incline]: no inclination within +-%.3f deg clears the "
-      "head and the part\n",
-      a.incline_max_deg);
-  return kExitFindings;
+      "incline auto: %s deg is the first inclination whose programme verifies with every rule "
+      "(B travel %s deg, C travel %s deg; %s)\n",
+      Deg(plan.incline_rad).c_str(), Deg(plan.b_max_rad - plan.b_min_rad).c_str(),
+      Deg(plan.c_max_rad - plan.c_min_rad).c_str(), feeds.c_str());
+  return WriteAfpOutputs(*ls->scene, plan, a);
 #else
   (void)a;
   (void)path;

@@ -269,13 +269,18 @@ void WriteAfpProgram(const AfpPlan& plan, const scene::Scene& scene,
   program::Block b;
   detail::WriteOpening(w, b, dialect, header, scene.head.tool_number);
   detail::PoseWords pose_words(dialect);
+  double modal_feed = 0.0;  // mm/min; none written yet
   for (const AfpPoint& p : plan.points) {
     b.Clear();
     b.motion = p.index == 0 ? program::Motion::kRapid : program::Motion::kFeed;
     pose_words.Set(b, p.position, p.tool.linear());
     b[Axis::kPathLength] = p.s_mm;
     if (p.index == 0) b.comment = "start";
-    if (p.index == 1) b.feed = scene.head.afp.layup_speed_mm_s * 60.0;
+    const double feed = scene.head.afp.layup_speed_mm_s * 60.0 * p.feed_fraction;
+    if (p.index >= 1 && feed != modal_feed) {
+      b.feed = feed;
+      modal_feed = feed;
+    }
     w.Write(b);
   }
   detail::WriteEnding(w, b, dialect);

@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "detail/collision_mjcf.h"
+#include "detail/slab_depth.h"
 #include "stitchsim/geom/surface.h"
 #include "stitchsim/sim/cell.h"
 #include "stitchsim/sim/kinematics.h"
@@ -57,7 +58,8 @@ struct Body {
   MjcfShape shape = MjcfShape::kBox;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();
   std::shared_ptr<const geom::TriangleMesh> mesh_m;  // part meshes, metres
-  std::optional<Obb> fitted;  // meshes: a box fitted to the vertices, geometry frame
+  std::optional<Obb> fitted;    // meshes: a box fitted to the vertices, geometry frame
+  detail::DepthGeometry depth;  // robot bodies: where their slab depth is looked for
   std::unique_ptr<fcl::CollisionObjectd> object;
 };
 
@@ -242,6 +244,18 @@ class FclWorld final : public CollisionWorld {
   template <class Visit>
   void ForEachPair(Visit&& visit) const;
   void CheckPair(int i, int j, CollisionResult& result) const;
+  // The mold / preform slab a part body is a tile of; nullptr for other bodies.
+  const detail::Slab* SlabOf(const Body& b) const {
+    if (b.part == PartKind::kMold) return &mold_slab_;
+    if (b.part == PartKind::kPreform) return &preform_slab_;
+    return nullptr;
+  }
+  // Robot body `r` (placed at r_world) against a tile `p` of `slab`: FCL's verdict `hit`
+  // (triangles crossed), else a body wholly inside the slab (its centre inside, `may_be_inside`
+  // from the broad phase). The depth is measured on the analytic surface (slab_depth.h).
+  void SlabContact(const Body& r, const Body& p, const detail::Slab& slab,
+                   const Eigen::Isometry3d& r_world, const Eigen::Isometry3d& part_world, bool hit,
+                   bool may_be_inside, CollisionResult& result) const;
   // Smallest distance over the checked pairs, up to `cutoff` (m); sets result's clearance,
   // pair or error.
   void Clearance(double cutoff, CollisionResult& result);
@@ -251,6 +265,8 @@ class FclWorld final : public CollisionWorld {
 
   const RobotModel& robot_;
   CellSetup cell_;
+  detail::Slab mold_slab_, preform_slab_;
+  Eigen::Isometry3d part_world_ = Eigen::Isometry3d::Identity();  // at the last Place
   LinkFrames frames_;
   std::vector<Body> bodies_;
   int n_ = 0;
@@ -351,12 +367,15 @@ bool FclWorld::Build(const scene::Scene& scene, DiagnosticSink& sink) {
       b.local = g.pose_in_link * Eigen::Translation3d(0, 0, -0.5);
     }
     b.geometry = MakePrimitive(b.shape, b.size);
+    if (b.group == Group::kRobot) b.depth = detail::PrimitiveDepthGeometry(b.shape, b.size);
     AddBody(std::move(b));
   }
   (void)rs535;
   // The part: mold slab below the surface, preform slab above it, constraints.
   const geom::Surface& s = *scene.surface;
   const double tol_mm = 1.0;
+  mold_slab_ = {&s, -scene.mold_depth_mm, 0.0};
+  preform_slab_ = {&s, 0.0, scene.preform_thickness_mm};
   auto add_part = [&](std::string name, PartKind kind, geom::TriangleMesh mesh_mm,
                       const Eigen::Isometry3d& local) {
     Body b;
@@ -535,6 +554,7 @@ bool FclWorld::Build(const scene::Scene& scene, DiagnosticSink& sink) {
 void FclWorld::Place(const JointVector& q) {
   ForwardKinematics(robot_, q, frames_);
   const Eigen::Isometry3d part = PartPoseWorld(cell_, q[kRotator]);
+  part_world_ = part;
   for (Body& b : bodies_) {
     if (placed_ && !b.moves) continue;  // fixed bodies keep their first placement
     const Eigen::Isometry3d frame =
@@ -553,16 +573,54 @@ void FclWorld::CheckPair(int i, int j, CollisionResult& result) const {
   fcl::CollisionRequestd req(1, true);
   fcl::CollisionResultd res;
   fcl::collide(a.object.get(), b.object.get(), req, res);
+  const bool swap = b.group == Group::kRobot && a.group != Group::kRobot;
+  const Body& r = swap ? b : a;  // the robot body (a robot-robot pair: a)
+  const Body& o = swap ? a : b;
+  if (const detail::Slab* slab = SlabOf(o); slab != nullptr && r.group == Group::kRobot) {
+    const std::size_t ri = static_cast<std::size_t>(swap ? j : i);
+    const Obb& tile = obb_[static_cast<std::size_t>(swap ? i : j)];
+    const Eigen::Vector3d d = tile.r.transpose() * (obb_[ri].c - tile.c);
+    const bool centre_in_tile_box = (d.cwiseAbs() - tile.e).maxCoeff() <= 0.0;
+    SlabContact(r, o, *slab, Eigen::Isometry3d(r.object->getTransform().matrix()), part_world_,
+                res.isCollision(), centre_in_tile_box, result);
+    return;
+  }
   if (!res.isCollision()) return;
   const fcl::Contactd& c = res.getContact(0);
   Contact out;
   out.kind = a.group == Group::kPart || b.group == Group::kPart ? ContactClass::kHeadPart
                                                                 : ContactClass::kRobotCell;
-  const bool swap = b.group == Group::kRobot && a.group != Group::kRobot;
-  out.body_a = swap ? b.name : a.name;
-  out.body_b = swap ? a.name : b.name;
-  out.depth_m = std::isfinite(c.penetration_depth) ? std::abs(c.penetration_depth) : 0.0;
+  out.body_a = r.name;
+  out.body_b = o.name;
+  out.depth_measured = !a.mesh_m && !b.mesh_m;
+  out.depth_m = out.depth_measured && std::isfinite(c.penetration_depth)
+                    ? std::abs(c.penetration_depth)
+                    : 0.0;
   out.point_world_m = c.pos;
+  result.contacts.push_back(std::move(out));
+}
+
+void FclWorld::SlabContact(const Body& r, const Body& p, const detail::Slab& slab,
+                           const Eigen::Isometry3d& r_world, const Eigen::Isometry3d& part_world,
+                           bool hit, bool may_be_inside, CollisionResult& result) const {
+  for (const Contact& c : result.contacts) {
+    if (c.body_a == r.name && c.body_b == p.name) return;  // another tile of the same slab
+  }
+  // FCL meshes are hollow: a body wholly inside the slab crosses no triangle. A primitive's
+  // centre is its frame's origin.
+  if (!hit && !(may_be_inside && detail::InsideSlab(r_world.translation(), part_world, slab))) {
+    return;
+  }
+  // The mesh detects (its chords may stand up to the tessellation tolerance proud of the
+  // surface); the surface measures. No sample below the head-side face: no penetration.
+  const auto deepest = detail::DeepestInSlab(r.depth, r_world, part_world, slab);
+  if (!deepest || deepest->depth_m <= 0.0) return;
+  Contact out;
+  out.kind = ContactClass::kHeadPart;
+  out.body_a = r.name;
+  out.body_b = p.name;
+  out.depth_m = deepest->depth_m;
+  out.point_world_m = deepest->point_world_m;
   result.contacts.push_back(std::move(out));
 }
 
@@ -716,6 +774,20 @@ CollisionResult FclWorld::CheckNaive(const JointVector& q, const CollisionOption
       fcl::CollisionResultd res;
       fcl::collide(objects[static_cast<std::size_t>(i)].get(),
                    objects[static_cast<std::size_t>(j)].get(), req, res);
+      const Body& a = bodies_[static_cast<std::size_t>(i)];
+      const Body& b = bodies_[static_cast<std::size_t>(j)];
+      const bool swap = b.group == Group::kRobot;
+      const detail::Slab* slab = SlabOf(swap ? a : b);
+      if (slab != nullptr && (swap ? b : a).group == Group::kRobot) {
+        const std::size_t before = result.contacts.size();
+        const auto& tf = objects[static_cast<std::size_t>(swap ? j : i)]->getTransform();
+        SlabContact(swap ? b : a, swap ? a : b, *slab, Eigen::Isometry3d(tf.matrix()), part,
+                    res.isCollision(), true, result);
+        if (res.isCollision() || result.contacts.size() > before) {
+          best = 0.0;
+          continue;
+        }
+      }
       if (res.isCollision()) {
         Contact c;
         c.body_a = bodies_[static_cast<std::size_t>(i)].name;

@@ -414,5 +414,74 @@ TEST(Help, TheAppAndEverySubcommandPrintHelpAndExitZero) {
   EXPECT_EQ(version.exit_code, 0) << Describe(version);
 }
 
+// ---------------------------------------------------------------------------------------------
+// plan afp --incline auto (issue 10 item 5)
+
+// The whole programme is judged with every rule: on the r = 250 mm cylinder the lean found
+// must give a programme that `stitchsim verify` (collision on) passes, feeds lowered in the
+// programme where only the joint speed failed. Before, the search checked the programmed
+// poses for head/part contact only and handed over a programme failing kin.joint_speed.
+TEST(PlanAfpCommand, InclineAutoHandsOverAProgrammeThatVerifies) {
+  const std::string scene = (kSource / "scenes" / "afp_concave_cylinder.yaml").string();
+  const fs::path programme = TempDir() / "afp_auto.nc";
+  const RunResult plan = RunCli({"plan", "afp", "--scene", scene, "--lay-angle", "45", "--incline",
+                                 "auto", "-o", programme.string()});
+  ASSERT_EQ(plan.exit_code, 0) << Describe(plan);
+  EXPECT_NE(plan.out.find("incline auto: "), std::string::npos) << Describe(plan);
+  // Rejected candidates name the rule and the line.
+  EXPECT_NE(plan.out.find("incline 0.000 deg: rejected: "), std::string::npos) << Describe(plan);
+  EXPECT_NE(plan.out.find(" at line "), std::string::npos) << Describe(plan);
+  const fs::path report = TempDir() / "afp_auto.json";
+  const RunResult verify =
+      RunCli({"verify", programme.string(), "--scene", scene, "--report", report.string()});
+  EXPECT_EQ(verify.exit_code, 0) << Describe(plan) << Describe(verify);
+  EXPECT_EQ(verify.out.rfind("PASS", 0), 0u) << Describe(verify);
+  // The verifier's own measure of the lowered programme: the fastest joint just under its
+  // limit (the feed was scaled to 95 % of it), not slowed far more than needed.
+  const json j = json::parse(ReadText(report));
+  for (const auto& rule : j["rules"]) {
+    if (rule["id"] != "kin.joint_speed") continue;
+    EXPECT_LE(rule["worst"]["value"].get<double>(), 100.0);
+    if (plan.out.find("feed lowered on") != std::string::npos) {
+      EXPECT_GE(rule["worst"]["value"].get<double>(), 90.0);
+    }
+  }
+  // Where the feed was lowered it is written in the programme and restored after: every F is
+  // at most the layup speed (200 mm/s), and the last F is the layup speed again.
+  const std::string text = ReadText(programme);
+  double last_f = 0.0;
+  int feeds = 0;
+  for (std::size_t at = text.find(" F"); at != std::string::npos; at = text.find(" F", at + 1)) {
+    last_f = std::stod(text.substr(at + 2));
+    EXPECT_LE(last_f, 12000.0 + 1e-9);
+    ++feeds;
+  }
+  EXPECT_GE(feeds, 1);
+  if (plan.out.find("feed lowered on") != std::string::npos) {
+    EXPECT_GE(feeds, 3) << "lowered and restored";
+  }
+  EXPECT_NEAR(last_f, 12000.0, 1e-6);
+}
+
+// No lean within the range works: exit 1, every candidate with its first failing rule and
+// line, and a summary of why.
+TEST(PlanAfpCommand, InclineAutoWithNoWorkingLeanExitsOneWithTheReason) {
+  const std::string scene = (kSource / "scenes" / "afp_concave_cylinder.yaml").string();
+  const fs::path programme = TempDir() / "afp_none.nc";
+  const RunResult r = RunCli({"plan", "afp", "--scene", scene, "--lay-angle", "45", "--incline",
+                              "auto", "--incline-max", "1", "-o", programme.string()});
+  EXPECT_EQ(r.exit_code, 1) << Describe(r);
+  for (const char* lean : {"0.000", "1.000", "-1.000"}) {
+    const std::string tag =
+        std::string("incline ") + lean + " deg: rejected: collision.head_mold at line ";
+    EXPECT_NE(r.out.find(tag), std::string::npos) << tag << "\n" << Describe(r);
+  }
+  EXPECT_NE(r.out.find("error[plan-afp-no-clear-incline]: no inclination within +-1.000 deg"),
+            std::string::npos)
+      << Describe(r);
+  EXPECT_NE(r.out.find("collision.head_mold on 3"), std::string::npos) << Describe(r);
+  EXPECT_FALSE(fs::exists(programme));
+}
+
 }  // namespace
 }  // namespace stitchsim::app

@@ -225,6 +225,40 @@ TEST(AfpProgram, ParsesBackAndHoldsThePoses) {
   EXPECT_FALSE(sink.HasErrors());
 }
 
+// A lowered feed is written on its moves (modal F, the parsed feed per move = the point's
+// fraction of the lay-up speed) and the lay-up speed is written again after them.
+TEST(AfpProgram, LoweredFeedsWrittenOnTheirMovesAndRestored) {
+  const auto s = LoadAfpScene();
+  ASSERT_NE(s, nullptr);
+  AfpPlan plan = PlanLay(*s, 45.0, 10.0, 10.0);
+  ASSERT_GT(plan.points.size(), 10u);
+  plan.points[4].feed_fraction = 0.5;
+  plan.points[5].feed_fraction = 0.25;
+  plan.points[6].feed_fraction = 0.25;
+  std::ostringstream out;
+  WriteAfpProgram(plan, *s, program::Dialect::Default(), out);
+  DiagnosticSink sink;
+  const auto blocks = program::ParseString(out.str(), program::Dialect::Default(), "afp.nc", sink);
+  const double layup = s->head.afp.layup_speed_mm_s * 60.0;
+  std::size_t point = 0;
+  int written = 0;
+  double modal = 0.0;
+  for (const auto& b : blocks) {
+    if (b.motion == program::Motion::kNone) continue;
+    if (b.feed) {
+      modal = *b.feed;
+      ++written;
+    }
+    if (point >= 1) {
+      EXPECT_NEAR(modal, layup * plan.points[point].feed_fraction, 1e-3) << point;
+    }
+    ++point;
+  }
+  EXPECT_EQ(point, plan.points.size());
+  EXPECT_EQ(written, 4);  // point 1, 4 (half), 5 (quarter), 7 (lay-up speed again)
+  EXPECT_FALSE(sink.HasErrors());
+}
+
 TEST(AfpOverTravel, ReportedForBAndC) {
   auto s = LoadAfpScene();
   ASSERT_NE(s, nullptr);

@@ -302,7 +302,9 @@ TEST(CollisionTest, AfpInclineAutoClearsTheSmallConcaveMoldCli) {
   const double theta = std::stod(plan.substr(at + tag.size()));
   EXPECT_NE(theta, 0.0);
   EXPECT_LE(std::abs(theta), 20.0);
-  EXPECT_NE(plan.find("incline 0.000 deg: not clear"), std::string::npos) << plan;
+  EXPECT_NE(plan.find("incline 0.000 deg: rejected: collision.head_mold at line "),
+            std::string::npos)
+      << plan;
   EXPECT_EQ(RunCli("verify " + pa.string() + " --scene " + scene, dir / "verifya.txt"), 0)
       << Slurp(dir / "verifya.txt");
   EXPECT_EQ(Slurp(dir / "verifya.txt").rfind("PASS", 0), 0u) << Slurp(dir / "verifya.txt");

@@ -54,10 +54,12 @@ class ContactRule final : public Rule {
       Observe(depth_mm, s.source_line, s.stitch, &s);
       const std::string subject = c.body_a + "|" + c.body_b;
       if (!seen_.insert(subject).second) continue;
-      Record(FindingSeverity::kError, depth_mm, 0.0, s.source_line, s.stitch, subject,
-             c.body_a + " hits " + c.body_b + " at " + PointText(c.point_world_m) +
-                 " (world), depth " + std::to_string(depth_mm).substr(0, 5) + " mm",
-             &s);
+      Record(
+          FindingSeverity::kError, depth_mm, 0.0, s.source_line, s.stitch, subject,
+          c.body_a + " hits " + c.body_b + " at " + PointText(c.point_world_m) +
+              (c.depth_measured ? " (world), depth " + std::to_string(depth_mm).substr(0, 5) + " mm"
+                                : std::string(" (world), depth not measured (mesh)")),
+          &s);
     }
   }
 

@@ -79,6 +79,9 @@ struct AfpPoint {
   double alpha_rad = 0.0;  ///< atan2(n_z, n_y): seed 003's cylinder angle on a cylinder
   AfpHeadAxes axes;
   Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();  ///< z = q, y = course (_|_ q)
+  /// Feed of the move that ends here, as a fraction of the head's layup speed (1 as planned;
+  /// `plan afp --incline auto` lowers it where a joint would exceed its speed limit).
+  double feed_fraction = 1.0;
 };
 
 /// An axis over its travel: a finding the cell cannot run.
@@ -111,8 +114,9 @@ std::unique_ptr<geom::Curve2> MakeLayAngleCourse(const geom::Domain2& domain, do
 std::optional<AfpPlan> PlanAfpCourse(const scene::Scene& scene, const scene::PathSpec* path,
                                      const AfpPlanOptions& options, DiagnosticSink& sink);
 
-/// Writes the programme (mm, G90, T<afp> M6, G0 to the start, G1 X Y Z A B C V F per point;
-/// A B C = the dialect's Euler angles of the tool pose, V = course length).
+/// Writes the programme (mm, G90, T<afp> M6, G0 to the start, G1 X Y Z A B C V per point;
+/// A B C = the dialect's Euler angles of the tool pose, V = course length). F (modal) on the
+/// first G1 and wherever a point's feed_fraction changes the feed.
 void WriteAfpProgram(const AfpPlan& plan, const scene::Scene& scene,
                      const program::Dialect& dialect, std::ostream& out);
 

@@ -26,8 +26,14 @@ struct Contact {
   ContactClass kind = ContactClass::kHeadPart;
   std::string body_a;  ///< e.g. "head:presser_foot", "link_3", "constraint:stringer_left"
   std::string body_b;
-  double depth_m = 0.0;  ///< penetration depth (> 0)
-  Eigen::Vector3d point_world_m = Eigen::Vector3d::Zero();
+  /// Penetration depth (docs/collision.md, "Depth"). Against the mold or the preform: how far
+  /// the body reaches under the slab's head-side face along the surface normal (> 0). Between
+  /// primitives: FCL's depth along the separating direction. 0 when not measured.
+  double depth_m = 0.0;
+  /// False against a mesh constraint: FCL's mesh contact depth is one triangle's, not the
+  /// body's, so none is reported.
+  bool depth_measured = true;
+  Eigen::Vector3d point_world_m = Eigen::Vector3d::Zero();  ///< deepest point (slabs) or FCL's
 };
 
 struct CollisionResult {
@@ -47,7 +53,8 @@ struct CollisionOptions {
   bool naive_baseline = false;
 };
 
-/// The collision world of one scene (immutable geometry; per-query state inside).
+/// The collision world of one scene (immutable geometry; per-query state inside). The scene
+/// and the robot model it was made from must outlive it.
 class CollisionWorld {
  public:
   virtual ~CollisionWorld() = default;
