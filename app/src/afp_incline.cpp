@@ -9,6 +9,7 @@
 
 #include "stitchsim/process/stitch_cycle.h"
 #include "stitchsim/program/dialect.h"
+#include "stitchsim/program/identity.h"
 #include "stitchsim/program/reader.h"
 #include "stitchsim/sim/cell.h"
 #include "stitchsim/sim/executor.h"
@@ -29,19 +30,21 @@ struct Judgement {
 Judgement Judge(const LoadedScene& ls, sim::CollisionWorld& world, const std::string& text) {
   Judgement out;
   const program::Dialect& dialect = program::Dialect::Default();
-  std::istringstream probe(text);
-  const double stitch_length =
-      sim::DeclaredStitchLength(probe, dialect).value_or(ls.scene->nominal_stitch_length_mm);
+  BoundedDiagnosticSink diagnostics(10);
+  std::istringstream in(text);
+  sim::ProgramInput input(in, dialect, "candidate.nc", diagnostics);
+  const std::optional<program::ProgramIdentity> id =
+      program::ReadIdentity(input.Header(), "candidate.nc", diagnostics);
+  const double stitch_length = id && id->stitch_length_mm ? *id->stitch_length_mm
+                                                          : ls.scene->nominal_stitch_length_mm;
   const sim::CellSetup cell = sim::MakeCellSetup(*ls.robot, *ls.scene);
   const process::ProcessModel model = process::MakeProcessModel(*ls.scene, stitch_length);
   verify::RuleContext ctx{ls.scene.get(), ls.robot.get(), &model, &world};
   sim::ExecuteOptions options = sim::ExecuteOptionsFor(*ls.scene);
   options.collision = &world;
   verify::Verifier verifier(ctx, false);
-  BoundedDiagnosticSink diagnostics(10);
-  std::istringstream in(text);
   const sim::ExecutionSummary run =
-      sim::ExecuteProgram(cell, model, dialect, in, "candidate.nc", options, diagnostics, verifier);
+      sim::ExecuteProgram(cell, model, input, options, diagnostics, verifier);
   if (!run.ok || diagnostics.HasErrors()) {
     out.error = diagnostics.Diagnostics().empty()
                     ? std::string("the candidate programme did not execute")
