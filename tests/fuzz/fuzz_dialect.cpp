@@ -47,8 +47,8 @@ void CheckDialectInUse(const program::Dialect& dialect) {
   const std::string written = program::WriteProgramString(SampleBlocks(dialect), dialect);
   DiagnosticSink sink;
   const auto blocks = program::ParseString(written, dialect, "rt.nc", sink);
-  Require(!sink.HasErrors(), "a programme written in a valid dialect does not read back:\n" +
-                                 written, &sink);
+  Require(!sink.HasErrors(),
+          "a programme written in a valid dialect does not read back:\n" + written, &sink);
   Require(program::WriteProgramString(blocks, dialect) == written,
           "write -> parse -> write is not a fixed point in this dialect:\n" + written);
 }

@@ -33,7 +33,8 @@ inline void Require(bool ok, std::string_view what, const DiagnosticSink* sink =
 
 /// Every diagnostic has a code starting with one of `prefixes` (e.g. "gcode-"), a message and
 /// no negative position.
-inline void RequireCodes(const DiagnosticSink& sink, std::initializer_list<std::string_view> prefixes) {
+inline void RequireCodes(const DiagnosticSink& sink,
+                         std::initializer_list<std::string_view> prefixes) {
   for (const Diagnostic& d : sink.Diagnostics()) {
     bool known = false;
     for (std::string_view p : prefixes) known = known || d.code.rfind(p, 0) == 0;

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <iterator>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,9 +33,41 @@ struct Rng {
 
 // Tokens that reach the readers' edge cases faster than random bytes do.
 constexpr std::string_view kTokens[] = {
-    "0", "-1", "1e300", "-1e300", "6e36", "2147483648", "-2147483649", "99999999999999999999",
-    "nan", "inf", ".", "\n", "\r\n", "%", "(", ")", ";", ":", "- ", "[", "]", "{", "}", "\"",
-    "'", "&a", "*a", "!!", "~", "0x10", "1e-320", "\t", " ", "\xff", std::string_view("\0", 1),
+    "0",
+    "-1",
+    "1e300",
+    "-1e300",
+    "6e36",
+    "2147483648",
+    "-2147483649",
+    "99999999999999999999",
+    "nan",
+    "inf",
+    ".",
+    "\n",
+    "\r\n",
+    "%",
+    "(",
+    ")",
+    ";",
+    ":",
+    "- ",
+    "[",
+    "]",
+    "{",
+    "}",
+    "\"",
+    "'",
+    "&a",
+    "*a",
+    "!!",
+    "~",
+    "0x10",
+    "1e-320",
+    "\t",
+    " ",
+    "\xff",
+    std::string_view("\0", 1),
 };
 
 std::string Mutate(const std::vector<std::string>& corpus, Rng& rng) {
