@@ -202,7 +202,7 @@ TEST(Stl, WriteReadRoundTripAndMeshSurface) {
   EXPECT_FALSE(ReadStl("/nonexistent.stl", 1.0, back, err));
 }
 
-// Found by the STL fuzz target's check: vertex welding keyed on llround(x / tol) overflowed
+// Found while writing the STL fuzz target: vertex welding keyed on llround(x / tol) overflowed
 // beyond 2^63 grid steps (9.2e9 file units at the default 1e-9), so distant vertices were
 // merged and the mesh silently changed. Large coordinates stay apart; ones too large for the
 // grid are refused.
