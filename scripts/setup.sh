@@ -9,6 +9,7 @@ PACKAGES=(
   libmujoco-dev libqhull-dev libeigen3-dev liburdfdom-dev libfcl-dev libosmesa6-dev
   libgtest-dev libgmock-dev libbenchmark-dev libyaml-cpp-dev libcli11-dev
   nlohmann-json3-dev libpng-dev
+  clang libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer and clang's sanitizer runtimes
 )
 
 missing=()

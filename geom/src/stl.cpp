@@ -16,15 +16,20 @@
 namespace stitchsim::geom {
 namespace {
 
+// Merges vertices on a grid of `tol` (file units). The grid keys are whole doubles, not
+// integers: a coordinate beyond 2^63 grid steps would overflow an integer key and weld
+// distant vertices together.
 struct Welder {
   double tol;
   double scale;
-  std::map<std::tuple<long long, long long, long long>, int> index;
+  std::map<std::tuple<double, double, double>, int> index;
   TriangleMesh* mesh;
+  double Step() const { return tol > 0 ? tol : 1e-12; }
+  /// False if `p_file` is too large for the grid (a key would be infinite).
+  bool Weldable(const Eigen::Vector3d& p_file) const { return (p_file / Step()).allFinite(); }
   int Add(const Eigen::Vector3d& p_file) {
-    const double q = tol > 0 ? tol : 1e-12;
-    const auto key = std::make_tuple(std::llround(p_file.x() / q), std::llround(p_file.y() / q),
-                                     std::llround(p_file.z() / q));
+    const Eigen::Vector3d g = p_file / Step();
+    const auto key = std::make_tuple(std::round(g.x()), std::round(g.y()), std::round(g.z()));
     auto it = index.find(key);
     if (it != index.end()) return it->second;
     const int id = static_cast<int>(mesh->vertices.size());
@@ -73,6 +78,10 @@ bool ReadStl(const std::filesystem::path& path, double scale_to_mm, TriangleMesh
         error = "STL triangle " + std::to_string(i + 1) + " has a non-finite coordinate";
         return false;
       }
+      if (!welder.Weldable(v[0]) || !welder.Weldable(v[1]) || !welder.Weldable(v[2])) {
+        error = "STL triangle " + std::to_string(i + 1) + " has a coordinate too large to weld";
+        return false;
+      }
       add_triangle(v[0], v[1], v[2]);
     }
   } else {
@@ -88,6 +97,10 @@ bool ReadStl(const std::filesystem::path& path, double scale_to_mm, TriangleMesh
         Eigen::Vector3d v;
         if (!(ss >> v.x() >> v.y() >> v.z()) || !Finite(v)) {
           error = "malformed vertex in ASCII STL " + path.string();
+          return false;
+        }
+        if (!welder.Weldable(v)) {
+          error = "vertex coordinate too large to weld in ASCII STL " + path.string();
           return false;
         }
         facet.push_back(v);

@@ -46,18 +46,15 @@ std::string WritePng(const std::filesystem::path& path, const Image& image) {
       path, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
 }
 
-bool ReadPng(const std::filesystem::path& path, Image& image, std::string& error) {
-  FILE* f = std::fopen(path.c_str(), "rb");
-  if (f == nullptr) {
-    error = "cannot open " + path.string();
-    return false;
-  }
+namespace {
+
+// The libpng part of ReadPng, apart so that no local with a destructor (a std::string of the
+// error path) lives across setjmp: GCC's sanitizer build rightly flags those as clobbered.
+bool DecodePng(FILE* f, Image& image) {
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png != nullptr ? png_create_info_struct(png) : nullptr;
   if (png == nullptr || info == nullptr || setjmp(png_jmpbuf(png))) {
     png_destroy_read_struct(&png, &info, nullptr);
-    std::fclose(f);
-    error = "not a readable PNG: " + path.string();
     return false;
   }
   png_init_io(png, f);
@@ -74,8 +71,21 @@ bool ReadPng(const std::filesystem::path& path, Image& image, std::string& error
     png_read_row(png, image.rgb.data() + static_cast<std::size_t>(y) * image.width * 3, nullptr);
   }
   png_destroy_read_struct(&png, &info, nullptr);
-  std::fclose(f);
   return true;
+}
+
+}  // namespace
+
+bool ReadPng(const std::filesystem::path& path, Image& image, std::string& error) {
+  FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) {
+    error = "cannot open " + path.string();
+    return false;
+  }
+  const bool ok = DecodePng(f, image);
+  std::fclose(f);
+  if (!ok) error = "not a readable PNG: " + path.string();
+  return ok;
 }
 
 }  // namespace stitchsim::render

@@ -1,9 +1,13 @@
 // Geometry: Euler conventions, surfaces, equal-arc-length sampling, the stitch count rule, STL.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "stitchsim/geom/curve.h"
 #include "stitchsim/geom/rotation.h"
@@ -196,6 +200,42 @@ TEST(Stl, WriteReadRoundTripAndMeshSurface) {
     }
   }
   EXPECT_FALSE(ReadStl("/nonexistent.stl", 1.0, back, err));
+}
+
+// Found while writing the STL fuzz target: vertex welding keyed on llround(x / tol) overflowed
+// beyond 2^63 grid steps (9.2e9 file units at the default 1e-9), so distant vertices were
+// merged and the mesh silently changed. Large coordinates stay apart; ones too large for the
+// grid are refused.
+TEST(Stl, LargeCoordinatesAreNotWeldedTogether) {
+  const auto file = std::filesystem::temp_directory_path() / "stitchsim_geom_big.stl";
+  auto write_ascii = [&](const std::vector<std::array<Eigen::Vector3d, 3>>& triangles) {
+    std::ofstream out(file);
+    out << "solid big\n";
+    for (const auto& t : triangles) {
+      out << "facet normal 0 0 1\nouter loop\n";
+      for (const auto& v : t) out << "vertex " << v.x() << " " << v.y() << " " << v.z() << "\n";
+      out << "endloop\nendfacet\n";
+    }
+    out << "endsolid big\n";
+  };
+  // Five distinct vertices; (1e12, 0, 0) and (2e12, 0, 0) once shared one overflowed key.
+  write_ascii(
+      {{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1e12, 0, 0), Eigen::Vector3d(1e12, 1e12, 0)},
+       {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2e12, 0, 0), Eigen::Vector3d(0, 3e12, 0)}});
+  TriangleMesh mesh;
+  std::string err;
+  ASSERT_TRUE(ReadStl(file, 1.0, mesh, err)) << err;
+  ASSERT_EQ(mesh.vertices.size(), 5u);
+  ASSERT_EQ(mesh.triangles.size(), 2u);
+  EXPECT_EQ(mesh.vertices[static_cast<std::size_t>(mesh.triangles[1][1])],
+            Eigen::Vector3d(2e12, 0, 0));
+  // 1e300 / 1e-9 is not a finite grid key: an error, not a mesh.
+  write_ascii({{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1e300, 0, 0), Eigen::Vector3d(0, 1, 0)}});
+  TriangleMesh untouched;
+  EXPECT_FALSE(ReadStl(file, 1.0, untouched, err));
+  EXPECT_NE(err.find("too large"), std::string::npos) << err;
+  EXPECT_TRUE(untouched.vertices.empty());
+  std::filesystem::remove(file);
 }
 
 TEST(Tessellation, SlabIsClosedWithPositiveVolume) {

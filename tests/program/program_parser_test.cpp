@@ -172,7 +172,7 @@ TEST(program_parser, PercentMarks) {
   EXPECT_EQ(FirstError("%\nG21\n%\n%\n").code, "gcode-text-after-end");
 }
 
-// Lines that straddle the reader's 1 MiB chunks and lines far beyond the length limit.
+// Lines that straddle the reader's 64 KiB chunks and lines far beyond the length limit.
 TEST(program_parser, StreamsAcrossChunkBoundaries) {
   std::string text = "%\nG21 G90 G1 F1000\n";
   const int kLines = 60000;
