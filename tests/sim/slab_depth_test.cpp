@@ -37,12 +37,19 @@ struct Probe {
   std::unique_ptr<CollisionWorld> world;
 };
 
+// One folder per test case under this build: ctest runs the cases in parallel.
+fs::path ScratchDir() {
+  const fs::path dir = fs::path(STITCHSIM_BINARY_DIR) / "slab_depth_test" /
+                       ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  fs::create_directories(dir);
+  return dir;
+}
+
 // A flat plate (mold `mold_depth_mm`, preform 2 mm) on the table and a head made of `geom`.
 Probe MakeProbe(const std::string& name, const std::string& geom, double mold_depth_mm,
                 const std::string& extra_scene = "",
                 const std::string& surface = "  type: plane\n  size: [600, 600]\n") {
-  const fs::path dir = fs::temp_directory_path() / "stitchsim_slab_depth_test";
-  fs::create_directories(dir);
+  const fs::path dir = ScratchDir();
   std::ifstream head_in(kSource / "models" / "heads" / "afp.yaml");
   std::stringstream head;
   head << head_in.rdbuf();
@@ -198,8 +205,7 @@ TEST(SlabDepthTest, BodyWhollyInsideTheMoldIsReported) {
 
 // Against a mesh constraint FCL's depth is one triangle's: the contact is reported, no depth.
 TEST(SlabDepthTest, MeshConstraintContactHasNoDepth) {
-  const fs::path stl = fs::temp_directory_path() / "stitchsim_slab_depth_test" / "cube.stl";
-  fs::create_directories(stl.parent_path());
+  const fs::path stl = ScratchDir() / "cube.stl";
   {
     // A 100 mm cube on the surface at the part origin, 12 outward triangles.
     std::ofstream out(stl);
