@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "app_test_support.h"
 #include "stitchsim/common/diagnostics.h"
 #include "stitchsim/scene/scene.h"
 
@@ -34,30 +35,8 @@ std::string Quote(const std::string& s) {
   return out + "'";
 }
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// A scratch folder per test process (ctest runs tests in parallel processes).
-const fs::path& TempDir() {
-  static const fs::path dir = [] {
-    const fs::path d =
-        fs::temp_directory_path() / ("stitchsim_app_test_" + std::to_string(getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  // Destroyed before `dir` (constructed after it): removes the folder at exit.
-  static const struct Cleanup {
-    ~Cleanup() {
-      std::error_code ec;
-      fs::remove_all(dir, ec);
-    }
-  } cleanup;
-  return dir;
-}
+using testing::ReadText;
+const fs::path& TempDir() { return testing::ScratchDir(); }
 
 fs::path WriteTemp(const std::string& name, const std::string& text) {
   const fs::path p = TempDir() / name;

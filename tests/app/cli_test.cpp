@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "app_test_support.h"
 #include "stitchsim/common/units.h"
 
 namespace stitchsim::app {
@@ -27,36 +28,15 @@ struct CliRun {
   std::string out, err;
 };
 
-std::string Slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-const fs::path& Dir() {
-  static const fs::path dir = [] {
-    const fs::path d =
-        fs::temp_directory_path() / ("stitchsim_cli_test_" + std::to_string(getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  // Destroyed before `dir` (constructed after it): removes the folder at exit.
-  static const struct Cleanup {
-    ~Cleanup() {
-      std::error_code ec;
-      fs::remove_all(dir, ec);
-    }
-  } cleanup;
-  return dir;
-}
+using testing::ReadText;
+const fs::path& Dir() { return testing::ScratchDir(); }
 
 CliRun Cli(const std::string& args) {
   const fs::path out = Dir() / "out.txt", err = Dir() / "err.txt";
   const std::string cmd =
       kBinary.string() + " " + args + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, Slurp(out), Slurp(err)};
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ReadText(out), ReadText(err)};
 }
 
 TEST(LengthText, BareNumbersTakeTheDefaultUnitSuffixesTheirOwn) {
@@ -85,7 +65,7 @@ TEST(LengthOptions, SuffixedAndBareLengthsPlanTheSameProgramme) {
       Cli("plan raster --scene " + raster + " --pitch 5.08mm --row-spacing 12.7mm -o " + b.string())
           .exit_code,
       0);
-  EXPECT_EQ(Slurp(a), Slurp(b));
+  EXPECT_EQ(ReadText(a), ReadText(b));
   const std::string circle = (kSource / "scenes" / "circle_8in.yaml").string();
   ASSERT_EQ(Cli("plan stitch --scene " + circle + " --stitch-length 4 -o " + a.string()).exit_code,
             0);
@@ -93,7 +73,7 @@ TEST(LengthOptions, SuffixedAndBareLengthsPlanTheSameProgramme) {
                 b.string())
                 .exit_code,
             0);
-  EXPECT_EQ(Slurp(a), Slurp(b));
+  EXPECT_EQ(ReadText(a), ReadText(b));
   // A length that is not one: exit 2, the option named.
   const CliRun bad =
       Cli("plan stitch --scene " + circle + " --stitch-length 5furlongs -o " + a.string());

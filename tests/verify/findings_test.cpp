@@ -13,6 +13,7 @@
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/sim/executor.h"
 #include "stitchsim/verify/verifier.h"
+#include "verify_test_support.h"
 
 namespace stitchsim::verify {
 namespace {
@@ -20,21 +21,8 @@ namespace {
 namespace fs = std::filesystem;
 const fs::path kSource = STITCHSIM_SOURCE_DIR;
 
-struct Loaded {
-  std::unique_ptr<scene::Scene> scene;
-  std::unique_ptr<sim::RobotModel> robot;
-};
-
-Loaded Load(const std::string& name) {
-  DiagnosticSink sink;
-  Loaded l;
-  l.scene = scene::LoadScene(kSource / "scenes" / (name + ".yaml"), sink);
-  EXPECT_NE(l.scene, nullptr);
-  auto robot = sim::LoadRobotModel(l.scene->cell_urdf, sink);
-  EXPECT_TRUE(robot.has_value());
-  l.robot = std::make_unique<sim::RobotModel>(std::move(*robot));
-  return l;
-}
+using testing::Load;
+using testing::Loaded;
 
 const RuleSummary* RuleOf(const Report& r, const std::string& id) {
   for (const auto& rule : r.rules) {

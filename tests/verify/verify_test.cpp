@@ -12,6 +12,7 @@
 #include "stitchsim/program/writer.h"
 #include "stitchsim/sim/executor.h"
 #include "stitchsim/verify/verifier.h"
+#include "verify_test_support.h"
 
 namespace stitchsim::verify {
 namespace {
@@ -20,21 +21,8 @@ namespace fs = std::filesystem;
 const fs::path kSource = STITCHSIM_SOURCE_DIR;
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
-struct Loaded {
-  std::unique_ptr<scene::Scene> scene;
-  std::unique_ptr<sim::RobotModel> robot;
-};
-
-Loaded Load(const std::string& name) {
-  DiagnosticSink sink;
-  Loaded l;
-  l.scene = scene::LoadScene(kSource / "scenes" / (name + ".yaml"), sink);
-  EXPECT_NE(l.scene, nullptr);
-  auto robot = sim::LoadRobotModel(l.scene->cell_urdf, sink);
-  EXPECT_TRUE(robot.has_value());
-  l.robot = std::make_unique<sim::RobotModel>(std::move(*robot));
-  return l;
-}
+using testing::Load;
+using testing::Loaded;
 
 struct Outcome {
   bool input_ok = false;
@@ -299,11 +287,8 @@ TEST(Verify, SideForceOfATurnAboutToolYFiresOnItsLine) {
 // Issue S6 item 1: a planner-made coupled 36 in arc on a twisted plate keeps the side-force
 // limit (worst 0.098 mm); with the shafts followed below the surface it failed 24 stitches.
 TEST(Verify, CoupledArcOnATwistedPlatePasses) {
-  DiagnosticSink sink;
-  Loaded l;
-  l.scene = scene::LoadScene(kSource / "tests/data/scenes/twisted_arc36.yaml", sink);
-  ASSERT_NE(l.scene, nullptr);
-  l.robot = std::make_unique<sim::RobotModel>(*sim::LoadRobotModel(l.scene->cell_urdf, sink));
+  const Loaded l = testing::LoadFile(kSource / "tests/data/scenes/twisted_arc36.yaml");
+  ASSERT_TRUE(l.scene && l.robot);
   const auto [text, ls] = PlanText(l, l.scene->paths.front(), planner::Mode::kCoupled);
   const Outcome o = Verify(l, text, ls);
   EXPECT_EQ(o.report.verdict, "pass") << Describe(o);
