@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <set>
 #include <sstream>
@@ -221,6 +222,36 @@ TEST(Findings, ARuleWithNothingToCheckDoesNotApply) {
   EXPECT_EQ(length->checked, 0);
   EXPECT_FALSE(length->Applies());
   EXPECT_TRUE(RuleOf(report, "stitch.width")->Applies());
+}
+
+// The audit's invariant on every bundled stitching scene, every path, coupled and decoupled
+// (coupled arcs break limits on purpose): no figure stands beyond a limit without findings.
+TEST(Findings, NoWorstBeyondALimitWithoutFindingsOnAnyBundledScene) {
+  int programmes = 0, failing = 0;
+  for (const char* name : {"flat_straight", "circle_8in", "cutout_slot", "cylinder_r90_frame",
+                           "arcs_planar", "blade_demo", "rs566_stringer_seam"}) {
+    const Loaded l = Load(name);
+    ASSERT_TRUE(l.scene && l.robot) << name;
+    for (const auto& path : l.scene->paths) {
+      for (const planner::Mode mode : {planner::Mode::kCoupled, planner::Mode::kDecoupled}) {
+        DiagnosticSink sink;
+        planner::StitchPlanOptions options;
+        options.mode = mode;
+        auto plan = planner::StitchPathPlanner::Create(*l.scene, path, options, sink);
+        ASSERT_TRUE(plan.has_value()) << name << "/" << path.name;
+        std::ostringstream text;
+        planner::WriteStitchProgram(*plan, *l.scene, path.name, program::Dialect::Default(), text);
+        const Report report = Verify(l, text.str(), plan->StitchLengthMm());
+        ExpectNoSilentWorst(report, std::string(name) + "/" + path.name + "/" +
+                                        std::string(planner::ToString(mode)));
+        ++programmes;
+        if (report.errors > 0) ++failing;
+      }
+    }
+  }
+  EXPECT_GE(programmes, 24);
+  EXPECT_GE(failing, 3);  // the coupled 8 in circle and the tight arcs at least
+  std::printf("%d programmes verified, %d with errors\n", programmes, failing);
 }
 
 }  // namespace
