@@ -124,9 +124,11 @@ inline std::vector<std::string> SplitLines(const std::string& text) {
   return lines;
 }
 
+// The child of `suite` whose name attribute is `name` (the <properties> child has none: const
+// operator[] on a missing key is undefined, so look it up with value()).
 inline const nlohmann::json* FindCase(const nlohmann::json& suite, const std::string& name) {
-  for (const nlohmann::json& c : suite["children"]) {
-    if (c["attrib"]["name"] == name) return &c;
+  for (const nlohmann::json& c : suite.at("children")) {
+    if (c.at("attrib").value("name", std::string()) == name) return &c;
   }
   return nullptr;
 }
