@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "limit_map.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
@@ -181,17 +182,7 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
     ReadPositive(r, *env, "radius_mm", e.radius_mm);
     h.envelope = e;
   }
-  if (auto lim = r.Child(*root, "limits", false); lim && r.ExpectMap(*lim, "limits")) {
-    for (const auto& rule : *lim) {
-      const std::string id = rule.first.Scalar();
-      if (!r.ExpectMap(rule.second, "limits of " + id)) continue;
-      for (const auto& kv : rule.second) {
-        if (auto v = r.Number(kv.second, id + "." + kv.first.Scalar())) {
-          h.limits[id][kv.first.Scalar()] = *v;
-        }
-      }
-    }
-  }
+  if (auto lim = r.Child(*root, "limits", false)) detail::ReadLimitMap(r, *lim, h.limits);
   if (sink.ErrorCount() > errors_before) return std::nullopt;
   return h;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "limit_map.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/common/limits.h"
 #include "stitchsim/geom/rotation.h"
@@ -486,17 +487,7 @@ class SceneLoader {
   }
 
   void ReadLimits(const YAML::Node& root, Scene& scene) {
-    auto lim = r_.Child(root, "limits", false);
-    if (!lim || !r_.ExpectMap(*lim, "limits")) return;
-    for (const auto& rule : *lim) {
-      const std::string id = rule.first.Scalar();
-      if (!r_.ExpectMap(rule.second, "limits of " + id)) continue;
-      for (const auto& kv : rule.second) {
-        if (auto v = r_.Number(kv.second, id + "." + kv.first.Scalar())) {
-          scene.limits[id][kv.first.Scalar()] = *v;
-        }
-      }
-    }
+    if (auto lim = r_.Child(root, "limits", false)) detail::ReadLimitMap(r_, *lim, scene.limits);
   }
 
   void ReadOmit(const YAML::Node& node, Scene& scene) {
