@@ -2,7 +2,7 @@
 # Plans and verifies every bundled scene with one stitchsim binary and keeps every report
 # (text, JSON, JUnit) and programme, so two builds can be compared byte for byte:
 #
-#   bash scripts/scene_reports.sh BIN OUT [--no-wing]
+#   bash scripts/scene_reports.sh BIN OUT [--no-wing | --wing-only]
 #   diff -r OUT_a OUT_b
 #
 # Stitch scenes: every path, coupled, decoupled and auto. AFP scenes: --lay-angle 45 at
@@ -15,11 +15,14 @@ set -uo pipefail
 BIN=$(realpath "$1")
 OUT=$(realpath -m "$2")
 WING=1
+OTHERS=1
 [[ ${3:-} == --no-wing ]] && WING=0
+[[ ${3:-} == --wing-only ]] && OTHERS=0
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 cd "$ROOT"
-rm -rf out/scene-reports && mkdir -p out/scene-reports "$OUT"
 W=out/scene-reports
+((OTHERS)) || W=out/scene-reports-wing  # may run beside a run of the others
+rm -rf "$W" && mkdir -p "$W" "$OUT"
 
 run() {  # run NAME CMD...: records stdout+exit in $W/NAME.txt
   local name=$1
@@ -57,6 +60,8 @@ for scene in scenes/*.yaml; do
     run "$name.plan" "$BIN" plan raster --scene "$scene" --strategy serpentine \
       --pitch 0.5 --row-spacing 2 -o "$W/$name.nc"
     verify "$name" "$scene"
+  elif ((!OTHERS)); then
+    continue
   elif [[ $head == afp ]]; then
     for incline in 0 auto; do
       name=$base.incline_$incline
