@@ -53,7 +53,7 @@ constexpr LimitSpec kTable[] = {
     {K::kNormalityWarningDeg, "stitch.normality", "warning_deg", U::kDeg, kNone, false,
      "head z tilt from the surface normal at needle entry, warning"},
     {K::kSingularityA5MinDeg, "kin.singularity", "a5_min_deg", U::kDeg, 1.0, false,
-     "wrist singularity band: |a5| below this is an error (also the IK's threshold)"},
+     "wrist singularity band: a5 nearer 0 deg than this is an error (also the IK threshold)"},
     {K::kJointSpeedMaxFraction, "kin.joint_speed", "max_fraction", U::kFraction, 1.0, false,
      "joint speed error limit, as a fraction of the URDF maximum"},
     {K::kJointSpeedWarningPct, "kin.joint_speed", "warning_pct", U::kPct, kNone, false,
