@@ -85,6 +85,32 @@ TEST(LimitTable, ReportFormatDocListsTheTable) {
       << LimitTableMarkdown();
 }
 
+// Every key of the table is read by some consumer (a key nobody reads is a limit a user sets
+// to no effect): each LimitKey enumerator appears in the source of process/, planner/, sim/ or
+// verify/.
+TEST(LimitTable, EveryKeyIsReadBySomeConsumer) {
+  const std::string header = ReadText(kSource / "scene/include/stitchsim/scene/rule_limits.h");
+  const std::size_t begin = header.find("enum class LimitKey");
+  const std::size_t end = header.find("\n  kCount", begin);
+  ASSERT_NE(begin, std::string::npos);
+  ASSERT_NE(end, std::string::npos);
+  std::string sources;
+  for (const char* folder : {"process/src", "planner/src", "sim/src", "verify/src"}) {
+    for (const auto& e : fs::recursive_directory_iterator(kSource / folder)) {
+      if (e.path().extension() == ".cpp") sources += ReadText(e.path());
+    }
+  }
+  std::size_t keys = 0;
+  for (std::size_t at = header.find("\n  k", begin); at < end; at = header.find("\n  k", at + 1)) {
+    const std::size_t stop = header.find_first_of(",= ", at + 3);
+    const std::string name = header.substr(at + 3, stop - at - 3);
+    ++keys;
+    EXPECT_NE(sources.find("LimitKey::" + name), std::string::npos)
+        << "no consumer reads LimitKey::" << name;
+  }
+  EXPECT_EQ(keys, kLimitKeyCount);
+}
+
 // ---- validation -----------------------------------------------------------------------------
 
 struct Problem {
