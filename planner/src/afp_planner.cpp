@@ -114,16 +114,12 @@ SeedCylinderPose SeedConcaveCylinderPose(double alpha, double beta, double theta
 }
 
 AfpAxisLimits AfpAxisLimitsFrom(const scene::RuleLimits& limits) {
+  using scene::LimitKey;
   AfpAxisLimits out;
-  const auto rule = limits.find("kin.afp_axes");
-  if (rule == limits.end()) return out;
-  auto read = [&](const char* key, double& field) {
-    if (auto it = rule->second.find(key); it != rule->second.end()) field = it->second / kRadToDeg;
-  };
-  read("b_min_deg", out.b_min_rad);
-  read("b_max_deg", out.b_max_rad);
-  read("c_min_deg", out.c_min_rad);
-  read("c_max_deg", out.c_max_rad);
+  out.b_min_rad = limits.Value(LimitKey::kAfpBMinDeg) / kRadToDeg;
+  out.b_max_rad = limits.Value(LimitKey::kAfpBMaxDeg) / kRadToDeg;
+  out.c_min_rad = limits.Value(LimitKey::kAfpCMinDeg) / kRadToDeg;
+  out.c_max_rad = limits.Value(LimitKey::kAfpCMaxDeg) / kRadToDeg;
   return out;
 }
 

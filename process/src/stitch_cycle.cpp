@@ -17,14 +17,6 @@ Eigen::Vector3d ShaftPoint(const scene::NeedleSpec& n, double z_mm) {
   return n.through_mm + n.direction * ((z_mm - n.through_mm.z()) / n.direction.z());
 }
 
-double Limit(const scene::RuleLimits& limits, const std::string& rule, const std::string& key,
-             double fallback) {
-  const auto r = limits.find(rule);
-  if (r == limits.end()) return fallback;
-  const auto k = r->second.find(key);
-  return k == r->second.end() ? fallback : k->second;
-}
-
 }  // namespace
 
 ProcessModel MakeProcessModel(const scene::Scene& scene, double stitch_length_mm) {
@@ -275,14 +267,18 @@ WindowMetrics EvaluateCoupledStitch(const ProcessModel& model, const Eigen::Isom
 }
 
 NeedleLimits NeedleLimitsFrom(const scene::RuleLimits& limits) {
+  using scene::LimitKey;
+  // No limit: a bound no window metric reaches.
+  constexpr double kNoLimit = 1e9;
   NeedleLimits l;
-  l.side_force_error_mm = Limit(limits, "needle.side_force", "error_mm", 1e9);
-  const char* axes[3] = {"x_error_deg", "y_error_deg", "z_error_deg"};
+  l.side_force_error_mm = limits.Get(LimitKey::kSideForceErrorMm).value_or(kNoLimit);
+  const LimitKey axes[3] = {LimitKey::kRotationXErrorDeg, LimitKey::kRotationYErrorDeg,
+                            LimitKey::kRotationZErrorDeg};
   for (int i = 0; i < 3; ++i) {
-    l.rotation_error_rad[i] = Limit(limits, "needle.rotation_in_preform", axes[i], 1e9) * kDeg;
+    l.rotation_error_rad[i] = limits.Get(axes[i]).value_or(kNoLimit) * kDeg;
   }
   l.rotation_total_error_rad =
-      Limit(limits, "needle.rotation_in_preform", "total_error_deg", 1e9) * kDeg;
+      limits.Get(LimitKey::kRotationTotalErrorDeg).value_or(kNoLimit) * kDeg;
   return l;
 }
 

@@ -33,35 +33,16 @@ void ReadCount(detail::YamlReader& r, const YAML::Node& node, double value, std:
               std::to_string(hi) + ", got " + node.Scalar());
 }
 
-}  // namespace
-
-std::filesystem::path ResolveHeadFile(const std::string& name_or_path,
-                                      const std::filesystem::path& relative_to) {
-  const std::filesystem::path p(name_or_path);
-  if (p.has_extension()) return p.is_absolute() ? p : relative_to / p;
-  return DataDir() / "models" / "heads" / (name_or_path + ".yaml");
-}
-
-std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, DiagnosticSink& sink,
-                                     const LoadOptions& options) {
-  detail::YamlReader r(file, sink, "head");
-  const std::size_t errors_before = sink.ErrorCount();
-  auto root = r.LoadFile();
-  if (!root) return std::nullopt;
-  if (!r.ExpectMap(*root, "a head spec")) return std::nullopt;
-  r.CheckKeys(*root,
-              {"stitchsim_head", "name", "description", "kind", "tool_number", "mjcf", "tool_frame",
-               "needles", "stitch", "afp", "envelope", "limits"},
-              "head spec");
-  HeadSpec h;
-  h.file = file;
-  if (auto n = r.Child(*root, "name", true)) {
+// name, description, kind, tool_number and the MJCF file.
+void ReadIdentity(detail::YamlReader& r, const YAML::Node& root, const LoadOptions& options,
+                  HeadSpec& h) {
+  if (auto n = r.Child(root, "name", true)) {
     if (auto s = r.String(*n, "name")) h.name = *s;
   }
-  if (auto n = r.Child(*root, "description", false)) {
+  if (auto n = r.Child(root, "description", false)) {
     if (auto s = r.String(*n, "description")) h.description = *s;
   }
-  if (auto n = r.Child(*root, "kind", true)) {
+  if (auto n = r.Child(root, "kind", true)) {
     if (auto s = r.String(*n, "kind")) {
       if (*s == "single_sided_stitch") {
         h.kind = HeadKind::kSingleSidedStitch;
@@ -75,19 +56,23 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
       }
     }
   }
-  if (auto n = r.Child(*root, "tool_number", true)) {
+  if (auto n = r.Child(root, "tool_number", true)) {
     if (auto v = r.Number(*n, "tool_number"))
       ReadCount(r, *n, *v, "tool_number", 0, 999, h.tool_number);
   }
-  if (auto n = r.Child(*root, "mjcf", true)) {
+  if (auto n = r.Child(root, "mjcf", true)) {
     if (auto s = r.String(*n, "mjcf")) {
       detail::FileRefPolicy policy;
-      policy.roots = {file.has_parent_path() ? file.parent_path() : ".", ModelsDir()};
+      policy.roots = {h.file.has_parent_path() ? h.file.parent_path() : ".", ModelsDir()};
       policy.allow_outside = options.allow_outside_paths;
       if (auto p = r.ReferencedFile(*n, *s, policy, "head MJCF")) h.mjcf = *p;
     }
   }
-  if (auto tf = r.Child(*root, "tool_frame", true); tf && r.ExpectMap(*tf, "tool_frame")) {
+}
+
+// tool_frame: flange -> tool point, mm and degrees in the file.
+void ReadToolFrame(detail::YamlReader& r, const YAML::Node& root, HeadSpec& h) {
+  if (auto tf = r.Child(root, "tool_frame", true); tf && r.ExpectMap(*tf, "tool_frame")) {
     r.CheckKeys(*tf, {"position_mm", "rotation_deg"}, "tool_frame");
     Eigen::Vector3d pos = Eigen::Vector3d::Zero();
     Eigen::Vector3d rot = Eigen::Vector3d::Zero();
@@ -101,7 +86,10 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
     h.flange_to_tool_m.translation() = pos / 1000.0;
     h.flange_to_tool_m.linear() = geom::RotationFromEuler(geom::EulerOrder{}, rot * (kPi / 180.0));
   }
-  if (auto nd = r.Child(*root, "needles", true)) {
+}
+
+void ReadNeedles(detail::YamlReader& r, const YAML::Node& root, HeadSpec& h) {
+  if (auto nd = r.Child(root, "needles", true)) {
     if (!nd->IsSequence()) {
       r.Error(*nd, "type", "needles must be a list");
     } else {
@@ -130,7 +118,11 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
       }
     }
   }
-  if (auto st = r.Child(*root, "stitch", h.kind != HeadKind::kAfp);
+}
+
+// stitch: the stitch-cycle parameters (required for a stitching head).
+void ReadStitchProcess(detail::YamlReader& r, const YAML::Node& root, HeadSpec& h) {
+  if (auto st = r.Child(root, "stitch", h.kind != HeadKind::kAfp);
       st && r.ExpectMap(*st, "stitch")) {
     r.CheckKeys(*st,
                 {"nominal_length_mm", "width_mm", "needle_in_phase", "walk_capacity_mm",
@@ -160,7 +152,11 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
       }
     }
   }
-  if (auto af = r.Child(*root, "afp", h.kind == HeadKind::kAfp); af && r.ExpectMap(*af, "afp")) {
+}
+
+// afp: the tow and layup parameters (required for an AFP head).
+void ReadAfp(detail::YamlReader& r, const YAML::Node& root, HeadSpec& h) {
+  if (auto af = r.Child(root, "afp", h.kind == HeadKind::kAfp); af && r.ExpectMap(*af, "afp")) {
     r.CheckKeys(*af,
                 {"tows", "tow_width_mm", "roller_radius_mm", "min_steering_radius_mm",
                  "layup_speed_mm_s", "rapid_speed_mm_s"},
@@ -175,13 +171,46 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
     num("layup_speed_mm_s", h.afp.layup_speed_mm_s);
     num("rapid_speed_mm_s", h.afp.rapid_speed_mm_s);
   }
-  if (auto env = r.Child(*root, "envelope", false); env && r.ExpectMap(*env, "envelope")) {
+}
+
+void ReadEnvelope(detail::YamlReader& r, const YAML::Node& root, HeadSpec& h) {
+  if (auto env = r.Child(root, "envelope", false); env && r.ExpectMap(*env, "envelope")) {
     r.CheckKeys(*env, {"height_mm", "radius_mm"}, "envelope");
     HeadEnvelope e;
     ReadPositive(r, *env, "height_mm", e.height_mm);
     ReadPositive(r, *env, "radius_mm", e.radius_mm);
     h.envelope = e;
   }
+}
+
+}  // namespace
+
+std::filesystem::path ResolveHeadFile(const std::string& name_or_path,
+                                      const std::filesystem::path& relative_to) {
+  const std::filesystem::path p(name_or_path);
+  if (p.has_extension()) return p.is_absolute() ? p : relative_to / p;
+  return DataDir() / "models" / "heads" / (name_or_path + ".yaml");
+}
+
+std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, DiagnosticSink& sink,
+                                     const LoadOptions& options) {
+  detail::YamlReader r(file, sink, "head");
+  const std::size_t errors_before = sink.ErrorCount();
+  auto root = r.LoadFile();
+  if (!root) return std::nullopt;
+  if (!r.ExpectMap(*root, "a head spec")) return std::nullopt;
+  r.CheckKeys(*root,
+              {"stitchsim_head", "name", "description", "kind", "tool_number", "mjcf", "tool_frame",
+               "needles", "stitch", "afp", "envelope", "limits"},
+              "head spec");
+  HeadSpec h;
+  h.file = file;
+  ReadIdentity(r, *root, options, h);
+  ReadToolFrame(r, *root, h);
+  ReadNeedles(r, *root, h);
+  ReadStitchProcess(r, *root, h);
+  ReadAfp(r, *root, h);
+  ReadEnvelope(r, *root, h);
   if (auto lim = r.Child(*root, "limits", false)) detail::ReadLimitMap(r, *lim, h.limits);
   if (sink.ErrorCount() > errors_before) return std::nullopt;
   return h;

@@ -4,22 +4,6 @@
 #include "yaml_reader.h"
 
 namespace stitchsim::scene {
-namespace detail {
-
-void ReadLimitMap(YamlReader& r, const YAML::Node& limits, RuleLimits& out) {
-  if (!r.ExpectMap(limits, "limits")) return;
-  for (const auto& rule : limits) {
-    const std::string id = rule.first.Scalar();
-    if (!r.ExpectMap(rule.second, "limits of " + id)) continue;
-    for (const auto& kv : rule.second) {
-      if (auto v = r.Number(kv.second, id + "." + kv.first.Scalar())) {
-        out[id][kv.first.Scalar()] = *v;
-      }
-    }
-  }
-}
-
-}  // namespace detail
 
 bool ApplyLimitsFile(const std::filesystem::path& file, Scene& scene, DiagnosticSink& sink) {
   const std::size_t errors_before = sink.ErrorCount();

@@ -361,113 +361,121 @@ class SceneLoader {
 
   bool BuildCurve(const YAML::Node& item, const YAML::Node& type_node, const std::string& type,
                   geom::Curve2& curve) {
-    if (type == "line") {
-      r_.CheckKeys(item, {"name", "type", "from", "to"}, "line path");
-      auto a = Point2(item, "from", true);
-      auto b = Point2(item, "to", true);
-      if (!a || !b) return false;
-      if ((*a - *b).norm() < 1e-9) {
-        r_.Error(item, "degenerate-path", "line path has zero length");
-        return false;
-      }
-      curve.Add(geom::MakeLineSegment(*a, *b), "line");
-      return true;
-    }
-    if (type == "arc" || type == "circle") {
-      const bool circle = type == "circle";
-      if (circle) {
-        r_.CheckKeys(item, {"name", "type", "center", "radius", "start_deg", "direction"},
-                     "circle path");
-      } else {
-        r_.CheckKeys(item, {"name", "type", "center", "radius", "start_deg", "end_deg"},
-                     "arc path");
-      }
-      auto c = Point2(item, "center", true);
-      auto radius = LengthKey(item, "radius", true, true);
-      double start = 0.0;
-      if (auto v = NumberKey(item, "start_deg", !circle)) start = *v;
-      double end = start + 360.0;
-      if (circle) {
-        if (auto n = r_.Child(item, "direction", false)) {
-          auto d = r_.String(*n, "direction");
-          if (d && *d == "cw") {
-            end = start - 360.0;
-          } else if (d && *d != "ccw") {
-            r_.Error(*n, "bad-value", "direction must be ccw or cw, got '" + *d + "'");
-            return false;
-          }
-        }
-      } else if (auto v = NumberKey(item, "end_deg", true)) {
-        end = *v;
-        if (std::abs(end - start) < 1e-9 || std::abs(end - start) > 360.0) {
-          r_.Error(item, "degenerate-path", "arc sweep must be non-zero and at most 360 deg");
-          return false;
-        }
-      } else {
-        return false;
-      }
-      if (!c || !radius) return false;
-      curve.Add(geom::MakeEllipticArc(*c, *radius, *radius, 0.0, start * kDeg, end * kDeg), type);
-      return true;
-    }
-    if (type == "polyline") {
-      r_.CheckKeys(item, {"name", "type", "points", "closed"}, "polyline path");
-      auto n = r_.Child(item, "points", true);
-      if (!n) return false;
-      if (!n->IsSequence() || n->size() < 2) {
-        r_.Error(*n, "type", "points must be a list of at least two [u, v] points");
-        return false;
-      }
-      std::vector<Eigen::Vector2d> pts;
-      for (const auto& pn : *n) {
-        auto v = r_.Vector(pn, 2, "point", unit_);
-        if (!v) return false;
-        pts.emplace_back((*v)[0], (*v)[1]);
-      }
-      bool closed = false;
-      if (auto cn = r_.Child(item, "closed", false)) {
-        if (auto b = r_.Bool(*cn, "closed")) closed = *b;
-      }
-      if (closed) pts.push_back(pts.front());
-      for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
-        if ((pts[i + 1] - pts[i]).norm() < 1e-9) {
-          r_.Error((*n)[std::min(i + 1, n->size() - 1)], "degenerate-path",
-                   "polyline has two equal consecutive points");
-          return false;
-        }
-        curve.Add(geom::MakeLineSegment(pts[i], pts[i + 1]), "line");
-      }
-      return true;
-    }
-    if (type == "slot") {
-      // Two parallel straights of `length`, `width` apart, joined at each end by a half
-      // ellipse whose semi-axis along the slot is `end_radius` (across: width / 2).
-      r_.CheckKeys(item, {"name", "type", "center", "length", "width", "end_radius", "angle_deg"},
-                   "slot path");
-      auto c = Point2(item, "center", true);
-      auto length = LengthKey(item, "length", true, true);
-      auto width = LengthKey(item, "width", true, true);
-      auto end_r = LengthKey(item, "end_radius", true, true);
-      double angle = 0.0;
-      if (auto v = NumberKey(item, "angle_deg", false)) angle = *v;
-      if (!c || !length || !width || !end_r) return false;
-      const double th = angle * kDeg;
-      const Eigen::Matrix2d rot = Eigen::Rotation2Dd(th).toRotationMatrix();
-      const double hl = *length / 2;
-      const double hw = *width / 2;
-      auto P = [&](double x, double y) -> Eigen::Vector2d {
-        return *c + rot * Eigen::Vector2d(x, y);
-      };
-      // Counter-clockwise: bottom straight (+x), right end, top straight (-x), left end.
-      curve.Add(geom::MakeLineSegment(P(-hl, -hw), P(hl, -hw)), "straight");
-      curve.Add(geom::MakeEllipticArc(P(hl, 0), *end_r, hw, th, -kPi / 2, kPi / 2), "end");
-      curve.Add(geom::MakeLineSegment(P(hl, hw), P(-hl, hw)), "straight");
-      curve.Add(geom::MakeEllipticArc(P(-hl, 0), *end_r, hw, th, kPi / 2, 3 * kPi / 2), "end");
-      return true;
-    }
+    if (type == "line") return BuildLine(item, curve);
+    if (type == "arc" || type == "circle") return BuildArc(item, type, curve);
+    if (type == "polyline") return BuildPolyline(item, curve);
+    if (type == "slot") return BuildSlot(item, curve);
     r_.Error(type_node, "bad-value",
              "path type must be line, arc, circle, polyline or slot, got '" + type + "'");
     return false;
+  }
+
+  bool BuildLine(const YAML::Node& item, geom::Curve2& curve) {
+    r_.CheckKeys(item, {"name", "type", "from", "to"}, "line path");
+    auto a = Point2(item, "from", true);
+    auto b = Point2(item, "to", true);
+    if (!a || !b) return false;
+    if ((*a - *b).norm() < 1e-9) {
+      r_.Error(item, "degenerate-path", "line path has zero length");
+      return false;
+    }
+    curve.Add(geom::MakeLineSegment(*a, *b), "line");
+    return true;
+  }
+
+  // An arc (start_deg to end_deg) or a full circle (from start_deg, ccw or cw).
+  bool BuildArc(const YAML::Node& item, const std::string& type, geom::Curve2& curve) {
+    const bool circle = type == "circle";
+    if (circle) {
+      r_.CheckKeys(item, {"name", "type", "center", "radius", "start_deg", "direction"},
+                   "circle path");
+    } else {
+      r_.CheckKeys(item, {"name", "type", "center", "radius", "start_deg", "end_deg"}, "arc path");
+    }
+    auto c = Point2(item, "center", true);
+    auto radius = LengthKey(item, "radius", true, true);
+    double start = 0.0;
+    if (auto v = NumberKey(item, "start_deg", !circle)) start = *v;
+    double end = start + 360.0;
+    if (circle) {
+      if (auto n = r_.Child(item, "direction", false)) {
+        auto d = r_.String(*n, "direction");
+        if (d && *d == "cw") {
+          end = start - 360.0;
+        } else if (d && *d != "ccw") {
+          r_.Error(*n, "bad-value", "direction must be ccw or cw, got '" + *d + "'");
+          return false;
+        }
+      }
+    } else if (auto v = NumberKey(item, "end_deg", true)) {
+      end = *v;
+      if (std::abs(end - start) < 1e-9 || std::abs(end - start) > 360.0) {
+        r_.Error(item, "degenerate-path", "arc sweep must be non-zero and at most 360 deg");
+        return false;
+      }
+    } else {
+      return false;
+    }
+    if (!c || !radius) return false;
+    curve.Add(geom::MakeEllipticArc(*c, *radius, *radius, 0.0, start * kDeg, end * kDeg), type);
+    return true;
+  }
+
+  bool BuildPolyline(const YAML::Node& item, geom::Curve2& curve) {
+    r_.CheckKeys(item, {"name", "type", "points", "closed"}, "polyline path");
+    auto n = r_.Child(item, "points", true);
+    if (!n) return false;
+    if (!n->IsSequence() || n->size() < 2) {
+      r_.Error(*n, "type", "points must be a list of at least two [u, v] points");
+      return false;
+    }
+    std::vector<Eigen::Vector2d> pts;
+    for (const auto& pn : *n) {
+      auto v = r_.Vector(pn, 2, "point", unit_);
+      if (!v) return false;
+      pts.emplace_back((*v)[0], (*v)[1]);
+    }
+    bool closed = false;
+    if (auto cn = r_.Child(item, "closed", false)) {
+      if (auto b = r_.Bool(*cn, "closed")) closed = *b;
+    }
+    if (closed) pts.push_back(pts.front());
+    for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+      if ((pts[i + 1] - pts[i]).norm() < 1e-9) {
+        r_.Error((*n)[std::min(i + 1, n->size() - 1)], "degenerate-path",
+                 "polyline has two equal consecutive points");
+        return false;
+      }
+      curve.Add(geom::MakeLineSegment(pts[i], pts[i + 1]), "line");
+    }
+    return true;
+  }
+
+  bool BuildSlot(const YAML::Node& item, geom::Curve2& curve) {
+    // Two parallel straights of `length`, `width` apart, joined at each end by a half
+    // ellipse whose semi-axis along the slot is `end_radius` (across: width / 2).
+    r_.CheckKeys(item, {"name", "type", "center", "length", "width", "end_radius", "angle_deg"},
+                 "slot path");
+    auto c = Point2(item, "center", true);
+    auto length = LengthKey(item, "length", true, true);
+    auto width = LengthKey(item, "width", true, true);
+    auto end_r = LengthKey(item, "end_radius", true, true);
+    double angle = 0.0;
+    if (auto v = NumberKey(item, "angle_deg", false)) angle = *v;
+    if (!c || !length || !width || !end_r) return false;
+    const double th = angle * kDeg;
+    const Eigen::Matrix2d rot = Eigen::Rotation2Dd(th).toRotationMatrix();
+    const double hl = *length / 2;
+    const double hw = *width / 2;
+    auto P = [&](double x, double y) -> Eigen::Vector2d {
+      return *c + rot * Eigen::Vector2d(x, y);
+    };
+    // Counter-clockwise: bottom straight (+x), right end, top straight (-x), left end.
+    curve.Add(geom::MakeLineSegment(P(-hl, -hw), P(hl, -hw)), "straight");
+    curve.Add(geom::MakeEllipticArc(P(hl, 0), *end_r, hw, th, -kPi / 2, kPi / 2), "end");
+    curve.Add(geom::MakeLineSegment(P(hl, hw), P(-hl, hw)), "straight");
+    curve.Add(geom::MakeEllipticArc(P(-hl, 0), *end_r, hw, th, kPi / 2, 3 * kPi / 2), "end");
+    return true;
   }
 
   void CheckInDomain(const YAML::Node& item, const PathSpec& p, const geom::Surface& surface) {

@@ -187,8 +187,13 @@ std::optional<double> YamlReader::Number(const YAML::Node& node, std::string_vie
     Error(node, "type", std::string(what) + " must be a number");
     return std::nullopt;
   }
+  return NumberText(node, node.Scalar(), what);
+}
+
+std::optional<double> YamlReader::NumberText(const YAML::Node& node, std::string_view text,
+                                             std::string_view what) {
   bool not_finite = false;
-  auto v = ParseStrictNumber(node.Scalar(), not_finite);
+  auto v = ParseStrictNumber(text, not_finite);
   if (!v) {
     Error(node, not_finite ? "not-finite" : "bad-number",
           std::string(what) +

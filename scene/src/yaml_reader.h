@@ -52,6 +52,10 @@ class YamlReader {
   std::optional<YAML::Node> Child(const YAML::Node& map, std::string_view key, bool required);
 
   std::optional<double> Number(const YAML::Node& node, std::string_view what);
+  /// `text` (part of the scalar `node`) as a strict finite number; problems reported at
+  /// `node` as Number reports them.
+  std::optional<double> NumberText(const YAML::Node& node, std::string_view text,
+                                   std::string_view what);
   std::optional<std::string> String(const YAML::Node& node, std::string_view what);
   std::optional<bool> Bool(const YAML::Node& node, std::string_view what);
   /// A length: a number in `unit`, or a string "<number> mm|in|m". Result in millimetres.

@@ -25,11 +25,8 @@ CellSetup MakeCellSetup(const RobotModel& robot, const scene::Scene& scene) {
   cell.rail_offset_m = scene.rail_offset_mm / 1000.0;
   cell.ik.reference = HomeJoints(robot, 0.0);
   if (cell.mount == scene::Mount::kTable) cell.fixed_part_world_m = PartPoseWorld(cell, 0.0);
-  if (auto it = scene.limits.find("kin.singularity"); it != scene.limits.end()) {
-    if (auto k = it->second.find("a5_min_deg"); k != it->second.end()) {
-      cell.ik.wrist_singularity_rad = k->second * 3.14159265358979323846 / 180.0;
-    }
-  }
+  cell.ik.wrist_singularity_rad =
+      scene.limits.Value(scene::LimitKey::kSingularityA5MinDeg) * 3.14159265358979323846 / 180.0;
   return cell;
 }
 

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -128,6 +129,59 @@ TEST(Dispatch, BareCommandPrintsHelp) {
   EXPECT_EQ(plan.exit_code, 0);
   EXPECT_NE(plan.out.find("raster"), std::string::npos) << plan.out;
   EXPECT_EQ(Cli("--help").out, bare.out);
+}
+
+// Limits (issue 11): a scene's limit override is checked against the limit table. An unknown
+// rule, an unknown key or a value in the wrong unit stops `verify` with exit 2 and file:line.
+TEST(Limits, BadOverridesStopVerifyWithFileAndLine) {
+  const std::string flat = ReadText(kSource / "scenes" / "flat_straight.yaml");
+  const int limits_line = static_cast<int>(std::count(flat.begin(), flat.end(), '\n')) + 2;
+  const fs::path nc = Dir() / "flat.nc";
+  ASSERT_EQ(Cli("plan stitch --scene " + (kSource / "scenes" / "flat_straight.yaml").string() +
+                " -o " + nc.string())
+                .exit_code,
+            0);
+  struct Case {
+    const char* line;
+    const char* code;
+  };
+  for (const Case& c : {Case{"  needle.sideforce: {error_mm: 0.1}", "scene-unknown-rule"},
+                        Case{"  needle.side_force: {eror_mm: 0.1}", "scene-unknown-limit"},
+                        Case{"  needle.side_force: {error_mm: 0.1 deg}", "scene-limit-unit"}}) {
+    const fs::path scene = Dir() / "bad_limits.yaml";
+    std::ofstream(scene) << flat << "limits:\n" << c.line << "\n";
+    const CliRun r = Cli("verify " + nc.string() + " --scene " + scene.string());
+    EXPECT_EQ(r.exit_code, 2) << c.line << "\n" << r.err;
+    EXPECT_NE(r.err.find(scene.string() + ":" + std::to_string(limits_line) + ":"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find(std::string("error[") + c.code + "]"), std::string::npos) << r.err;
+  }
+}
+
+// Two routes to one verdict: a limit written with a unit equals the bare number in the key's
+// unit (0.1 in = 2.54 mm of needle walk, less than the 3.5 mm the straight row needs).
+TEST(Limits, AUnitSuffixedLimitGivesTheVerdictOfTheBareValue) {
+  const std::string flat = ReadText(kSource / "scenes" / "flat_straight.yaml");
+  const fs::path nc = Dir() / "flat_units.nc", scene = Dir() / "units.yaml";
+  ASSERT_EQ(Cli("plan stitch --scene " + (kSource / "scenes" / "flat_straight.yaml").string() +
+                " -o " + nc.string())
+                .exit_code,
+            0);
+  std::string reports[2];
+  int exits[2] = {-1, -1};
+  const char* values[2] = {"0.1 in", "2.54"};
+  for (int i = 0; i < 2; ++i) {
+    std::ofstream(scene) << flat << "limits:\n  needle.walk: {error_mm: " << values[i] << "}\n";
+    const CliRun r =
+        Cli("verify " + nc.string() + " --scene " + scene.string() + " --no-collision");
+    exits[i] = r.exit_code;
+    reports[i] = r.out;
+  }
+  EXPECT_EQ(exits[0], 1) << reports[0];  // rule errors: the verdict is fail
+  EXPECT_EQ(exits[1], 1) << reports[1];
+  EXPECT_EQ(reports[0], reports[1]);
+  EXPECT_NE(reports[0].find("2.54 mm"), std::string::npos) << reports[0];
 }
 
 }  // namespace

@@ -274,8 +274,8 @@ TEST(AfpOverTravel, ReportedForBAndC) {
   // Normal pressure stays within B's travel there (B = acos(sin a) <= 90 deg).
   EXPECT_TRUE(PlanLay(*s, 45.0, 0.0, 5.0).over_travel.empty());
   // A narrower C travel from the scene's limits.
-  s->limits["kin.afp_axes"]["c_min_deg"] = -45.0;
-  s->limits["kin.afp_axes"]["c_max_deg"] = 45.0;
+  s->limits.Set(scene::LimitKey::kAfpCMinDeg, -45.0);
+  s->limits.Set(scene::LimitKey::kAfpCMaxDeg, 45.0);
   const AfpPlan tight = PlanLay(*s, 45.0, 10.0, 5.0);
   ASSERT_EQ(tight.over_travel.size(), 2u);
   EXPECT_EQ(tight.over_travel[1].code, "afp-c-over-travel");

@@ -65,7 +65,7 @@ TEST(Scene, HeadDefaultsComeFromTheHeadSpec) {
   EXPECT_DOUBLE_EQ(scene->head.stitch.width_mm, 17.0);
   EXPECT_DOUBLE_EQ(scene->head.stitch.phase_in, 0.15);
   EXPECT_DOUBLE_EQ(scene->head.stitch.phase_out, 0.85);
-  EXPECT_DOUBLE_EQ(scene->limits.at("needle.side_force").at("error_mm"), 0.10);
+  EXPECT_EQ(scene->limits.Get(LimitKey::kSideForceErrorMm), 0.10);
   // Tool z is the flange z turned over.
   EXPECT_NEAR(scene->head.flange_to_tool_m.linear()(2, 2), -1.0, 1e-12);
   EXPECT_NEAR(scene->head.flange_to_tool_m.translation().z(), 0.7, 1e-12);
@@ -86,8 +86,8 @@ limits:
   auto scene = LoadScene(p, sink);
   ASSERT_NE(scene, nullptr);
   EXPECT_EQ(scene->mount, Mount::kRotator);
-  EXPECT_DOUBLE_EQ(scene->limits.at("needle.side_force").at("error_mm"), 0.2);
-  EXPECT_DOUBLE_EQ(scene->limits.at("needle.side_force").at("warning_mm"), 0.07);
+  EXPECT_EQ(scene->limits.Get(LimitKey::kSideForceErrorMm), 0.2);
+  EXPECT_EQ(scene->limits.Get(LimitKey::kSideForceWarningMm), 0.07);
 }
 
 struct BrokenCase {

@@ -78,7 +78,7 @@ class ClearanceRule final : public Rule {
       : Rule("collision.clearance",
              "smallest distance between bodies that must not touch, under the margin (mm)", "mm"),
         world_(ctx.collision) {
-    summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_mm").value_or(10.0);
+    summary_.warning_limit = ctx.scene->limits.Value(scene::LimitKey::kClearanceWarningMm);
   }
   void OnSample(const sim::TraceSample& s) override {
     if (!Checkable(s)) return;

@@ -25,7 +25,7 @@ class ConstraintCrossingRule final : public Rule {
              "needle penetrations and needles-down moves clear of the constraint footprints "
              "(stringers, intercostals, spar caps) plus a margin",
              "mm") {
-    margin_mm_ = LimitOf(ctx, summary_.id, "margin_mm").value_or(1.0);
+    margin_mm_ = ctx.scene->limits.Value(scene::LimitKey::kConstraintMarginMm);
     summary_.error_limit = 0.0;
     const std::string kind = ctx.scene->surface ? ctx.scene->surface->Kind() : "";
     planar_ = kind == "plane" || kind == "polynomial" || kind == "mesh";

@@ -11,15 +11,6 @@ Rule::Rule(std::string id, std::string description, std::string unit) {
   summary_.unit = std::move(unit);
 }
 
-std::optional<double> Rule::LimitOf(const RuleContext& ctx, const std::string& rule,
-                                    const std::string& key) {
-  const auto r = ctx.scene->limits.find(rule);
-  if (r == ctx.scene->limits.end()) return std::nullopt;
-  const auto k = r->second.find(key);
-  if (k == r->second.end()) return std::nullopt;
-  return k->second;
-}
-
 void Rule::Observe(double value, int line, long stitch, const sim::TraceSample* sample) {
   if (!summary_.worst_value || value > *summary_.worst_value) {
     summary_.worst_value = value;

@@ -9,6 +9,8 @@
 namespace stitchsim::verify {
 namespace {
 
+using scene::LimitKey;
+
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
 std::string Fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
@@ -26,8 +28,9 @@ class RotationInPreformRule final : public Rule {
       : Rule("needle.rotation_in_preform",
              "head rotation about tool x, y, z and in total while the needles are in the preform",
              "deg") {
-    const char* keys[4] = {"x_error_deg", "y_error_deg", "z_error_deg", "total_error_deg"};
-    for (int i = 0; i < 4; ++i) limit_deg_[i] = LimitOf(ctx, summary_.id, keys[i]);
+    const LimitKey keys[4] = {LimitKey::kRotationXErrorDeg, LimitKey::kRotationYErrorDeg,
+                              LimitKey::kRotationZErrorDeg, LimitKey::kRotationTotalErrorDeg};
+    for (int i = 0; i < 4; ++i) limit_deg_[i] = ctx.scene->limits.Get(keys[i]);
     summary_.error_limit = limit_deg_[2] ? limit_deg_[2] : limit_deg_[3];
   }
   void OnWindow(const WindowRecord& w) override {
@@ -63,9 +66,9 @@ class SideForceRule final : public Rule {
              "entry, after the walk",
              "mm"),
         ctx_(ctx) {
-    summary_.error_limit = LimitOf(ctx, summary_.id, "error_mm");
-    summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_mm");
-    stiffness_ = LimitOf(ctx, summary_.id, "stiffness_n_per_mm");
+    summary_.error_limit = ctx.scene->limits.Get(LimitKey::kSideForceErrorMm);
+    summary_.warning_limit = ctx.scene->limits.Get(LimitKey::kSideForceWarningMm);
+    stiffness_ = ctx.scene->limits.Get(LimitKey::kSideForceStiffness);
   }
   void OnWindow(const WindowRecord& w) override {
     const auto& needles = ctx_.process->needles;
@@ -91,9 +94,9 @@ class WalkRule final : public Rule {
  public:
   explicit WalkRule(const RuleContext& ctx)
       : Rule("needle.walk", "needle walk the motion asks for, against the walk capacity", "mm") {
-    summary_.error_limit = LimitOf(ctx, summary_.id, "error_mm");
+    summary_.error_limit = ctx.scene->limits.Get(LimitKey::kWalkErrorMm);
     if (!summary_.error_limit) summary_.error_limit = ctx.process->walk_capacity_mm;
-    summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_mm");
+    summary_.warning_limit = ctx.scene->limits.Get(LimitKey::kWalkWarningMm);
   }
   void OnWindow(const WindowRecord& w) override {
     CheckUpper(
@@ -114,10 +117,10 @@ class StitchLengthRule final : public Rule {
              "point; insertion limits for the other needles, if given)",
              "%"),
         ctx_(ctx) {
-    summary_.error_limit = LimitOf(ctx, summary_.id, "error_pct");
-    summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_pct");
-    insertion_error_ = LimitOf(ctx, summary_.id, "insertion_error_pct");
-    insertion_warning_ = LimitOf(ctx, summary_.id, "insertion_warning_pct");
+    summary_.error_limit = ctx.scene->limits.Get(LimitKey::kStitchLengthErrorPct);
+    summary_.warning_limit = ctx.scene->limits.Get(LimitKey::kStitchLengthWarningPct);
+    insertion_error_ = ctx.scene->limits.Get(LimitKey::kStitchLengthInsertionErrorPct);
+    insertion_warning_ = ctx.scene->limits.Get(LimitKey::kStitchLengthInsertionWarningPct);
     // With two or more needles, each needle's figure beside its own limits.
     const auto& needles = ctx.process->needles;
     for (const scene::NeedleSpec& n : needles) {
@@ -183,8 +186,8 @@ class StitchWidthRule final : public Rule {
              "spacing of the insertion and catcher penetrations on the surface against nominal",
              "%"),
         ctx_(ctx) {
-    summary_.error_limit = LimitOf(ctx, summary_.id, "error_pct");
-    summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_pct");
+    summary_.error_limit = ctx.scene->limits.Get(LimitKey::kStitchWidthErrorPct);
+    summary_.warning_limit = ctx.scene->limits.Get(LimitKey::kStitchWidthWarningPct);
   }
   void OnPenetration(const PenetrationRecord& p) override {
     const double nominal = ctx_.process->nominal_width_mm;
@@ -207,8 +210,8 @@ class StandoffRule final : public Rule {
   explicit StandoffRule(const RuleContext& ctx)
       : Rule("stitch.standoff", "tool point distance from the stitching surface at needle entry",
              "mm") {
-    summary_.error_limit = LimitOf(ctx, summary_.id, "error_mm");
-    summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_mm");
+    summary_.error_limit = ctx.scene->limits.Get(LimitKey::kStandoffErrorMm);
+    summary_.warning_limit = ctx.scene->limits.Get(LimitKey::kStandoffWarningMm);
   }
   void OnPenetration(const PenetrationRecord& p) override {
     const double d = p.foot.signed_distance_mm;
@@ -229,8 +232,8 @@ class NormalityRule final : public Rule {
              "angle between the head z axis and the surface normal at needle "
              "entry",
              "deg") {
-    summary_.error_limit = LimitOf(ctx, summary_.id, "error_deg");
-    summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_deg");
+    summary_.error_limit = ctx.scene->limits.Get(LimitKey::kNormalityErrorDeg);
+    summary_.warning_limit = ctx.scene->limits.Get(LimitKey::kNormalityWarningDeg);
   }
   void OnPenetration(const PenetrationRecord& p) override {
     const double c = std::clamp(p.tool.linear().col(2).dot(p.foot.normal), -1.0, 1.0);
@@ -327,7 +330,7 @@ class SingularityRule final : public IkStatusRule {
   explicit SingularityRule(const RuleContext& ctx)
       : IkStatusRule("kin.singularity", "wrist (a5 near 0) or shoulder singular poses", "deg",
                      sim::IkStatus::kWristSingularity),
-        a5_min_deg_(LimitOf(ctx, "kin.singularity", "a5_min_deg").value_or(1.0)) {
+        a5_min_deg_(ctx.scene->limits.Value(LimitKey::kSingularityA5MinDeg)) {
     summary_.error_limit = a5_min_deg_;
   }
   void OnSample(const sim::TraceSample& s) override {
@@ -368,8 +371,8 @@ class JointSpeedRule final : public Rule {
   explicit JointSpeedRule(const RuleContext& ctx)
       : Rule("kin.joint_speed", "joint speed at the programmed feed against the URDF maximum", "%"),
         robot_(ctx.robot) {
-    summary_.error_limit = 100.0 * LimitOf(ctx, summary_.id, "max_fraction").value_or(1.0);
-    summary_.warning_limit = LimitOf(ctx, summary_.id, "warning_pct");
+    summary_.error_limit = 100.0 * ctx.scene->limits.Value(LimitKey::kJointSpeedMaxFraction);
+    summary_.warning_limit = ctx.scene->limits.Get(LimitKey::kJointSpeedWarningPct);
   }
   void OnSample(const sim::TraceSample& s) override {
     if (!s.has_joints) return;
@@ -418,9 +421,9 @@ class SyncRule final : public Rule {
              "U (drive) and V (path length) consistent with each other and with the tool travel; "
              "inside a seam (stitching on, head down) every move of the tool point is stitched",
              "mm") {
-    summary_.error_limit = LimitOf(ctx, summary_.id, "error_mm").value_or(0.01);
+    summary_.error_limit = ctx.scene->limits.Value(LimitKey::kSyncErrorMm);
     // A chord is shorter than its arc: V may exceed the straight travel by this fraction.
-    sag_fraction_ = LimitOf(ctx, summary_.id, "chord_allowance_pct").value_or(2.0) / 100.0;
+    sag_fraction_ = ctx.scene->limits.Value(LimitKey::kSyncChordAllowancePct) / 100.0;
   }
   // Each line's value is its largest inconsistency of the checks that apply to it, in mm:
   // V going back; |dU - dV| where U advances (AFP has no U); V against the tool travel where

@@ -48,8 +48,8 @@ struct SeedCylinderPose {
 };
 SeedCylinderPose SeedConcaveCylinderPose(double alpha_rad, double seed_beta_rad, double theta_rad);
 
-/// B / C travel the cell allows (head limits `kin.afp_axes`: b_min_deg, b_max_deg,
-/// c_min_deg, c_max_deg; defaults +-90 / +-180 deg, seed 003 section 4). Radians.
+/// B / C travel the cell allows (limits `kin.afp_axes`: b_min_deg, b_max_deg, c_min_deg,
+/// c_max_deg; defaults +-90 / +-180 deg in the limit table, seed 003 section 4). Radians.
 struct AfpAxisLimits {
   double b_min_rad = -1.5707963267948966;
   double b_max_rad = 1.5707963267948966;

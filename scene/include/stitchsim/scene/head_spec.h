@@ -4,12 +4,12 @@
 
 #include <Eigen/Geometry>
 #include <filesystem>
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "stitchsim/common/diagnostics.h"
+#include "stitchsim/scene/rule_limits.h"
 
 namespace stitchsim::scene {
 
@@ -45,9 +45,6 @@ struct AfpSpec {
   double rapid_speed_mm_s = 500.0;
 };
 
-/// Rule id -> limit key (e.g. "error_mm") -> value. Units are in the key names.
-using RuleLimits = std::map<std::string, std::map<std::string, double>>;
-
 /// The head near the work, for planners' keep-out margins: every part of the head lower than
 /// `height_mm` above the tool point (along tool z) lies within `radius_mm` of the tool z axis.
 /// A test checks it against the head's MJCF geometry.
@@ -68,7 +65,7 @@ struct HeadSpec {
   StitchProcessSpec stitch;
   AfpSpec afp;
   std::optional<HeadEnvelope> envelope;  ///< absent: the head spec gives none
-  RuleLimits limits;
+  RuleLimits limits;                     ///< the spec's `limits`, over the table's defaults
   bool IsStitching() const { return kind != HeadKind::kAfp; }
 };
 

@@ -11,8 +11,9 @@
 namespace stitchsim::scene {
 
 /// Reads `file` (a YAML map with the one key `limits`) and overrides `scene`'s limits with
-/// it. Every problem is a diagnostic with file:line:col (codes "limits-..."); returns false,
-/// leaving `scene` unchanged, if any error was reported.
+/// it, validated against the limit table as a scene's are. Every problem is a diagnostic with
+/// file:line:col (codes "limits-...", e.g. "limits-unknown-rule", "limits-limit-unit");
+/// returns false, leaving `scene` unchanged, if any error was reported.
 bool ApplyLimitsFile(const std::filesystem::path& file, Scene& scene, DiagnosticSink& sink);
 
 }  // namespace stitchsim::scene

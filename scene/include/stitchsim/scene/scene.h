@@ -53,7 +53,7 @@ struct Scene {
   std::vector<Constraint> constraints;
   std::vector<PathSpec> paths;
   double nominal_stitch_length_mm = 5.0;
-  RuleLimits limits;            ///< head defaults merged with the scene's overrides
+  RuleLimits limits;            ///< the head's limits overridden key by key by the scene's
   double rail_offset_mm = 0.0;  ///< rail policy: carriage x minus tool x (world), preferred
   /// Raster stitching defaults (`raster:`), mm; the planner's options override them.
   struct RasterDefaults {

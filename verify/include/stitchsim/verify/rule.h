@@ -64,9 +64,6 @@ class Rule {
 
  protected:
   Rule(std::string id, std::string description, std::string unit);
-  /// Limit `key` of this rule from the merged head + scene limits, or `fallback`.
-  static std::optional<double> LimitOf(const RuleContext& ctx, const std::string& rule,
-                                       const std::string& key);
   /// Counts one checked item and records a finding when `value` exceeds a limit
   /// (upper-bound check). `what()` names the measured quantity; it is only called for a
   /// finding, so the hot path formats nothing. Returns the severity recorded, if any.
