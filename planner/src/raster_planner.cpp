@@ -388,7 +388,7 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
   using program::Axis;
   const SourceLocation where{scene.file.string(), 0, 0};
   const geom::Surface& surface = *scene.surface;
-  if (surface.Kind() != "plane" && surface.Kind() != "polynomial") {
+  if (!surface.IsHeightField() || !surface.CoversDomain()) {
     sink.Error("plan-raster-surface", where,
                "raster planning needs a height-field surface (plane or polynomial), not '" +
                    surface.Kind() + "'");

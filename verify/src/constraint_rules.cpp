@@ -27,8 +27,7 @@ class ConstraintCrossingRule final : public Rule {
              "mm") {
     margin_mm_ = LimitOf(ctx, summary_.id, "margin_mm").value_or(1.0);
     summary_.error_limit = 0.0;
-    const std::string kind = ctx.scene->surface ? ctx.scene->surface->Kind() : "";
-    planar_ = kind == "plane" || kind == "polynomial" || kind == "mesh";
+    planar_ = ctx.scene->surface && ctx.scene->surface->IsHeightField();
     for (const scene::Constraint& c : ctx.scene->constraints) {
       Box b;
       b.name = c.name;
