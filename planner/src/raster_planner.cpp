@@ -16,6 +16,7 @@
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/block.h"
 #include "stitchsim/program/writer.h"
+#include "stitchsim/scene/footprint.h"
 
 namespace stitchsim::planner {
 namespace {
@@ -39,10 +40,10 @@ struct Region {
 };
 
 // Free u-intervals of the row at v inside [u0, u1].
-std::vector<std::pair<double, double>> FreeIntervals(const std::vector<Footprint>& fps, double v,
-                                                     double u0, double u1) {
+std::vector<std::pair<double, double>> FreeIntervals(const std::vector<scene::Footprint>& fps,
+                                                     double v, double u0, double u1) {
   std::vector<std::pair<double, double>> blocked;
-  for (const Footprint& f : fps) {
+  for (const scene::Footprint& f : fps) {
     double a = 0, b = 0;
     if (f.RowInterval(v, a, b) && b > u0 && a < u1) blocked.emplace_back(a, b);
   }
@@ -162,87 +163,6 @@ std::string_view ToString(RasterStrategy strategy) {
   return strategy == RasterStrategy::kJump ? "jump" : "serpentine";
 }
 
-// ---- footprints ---------------------------------------------------------------------------
-
-bool Footprint::Contains(const Eigen::Vector2d& p) const {
-  const Eigen::Vector2d d = p - centre;
-  return std::abs(d.dot(axis_x)) <= half_mm.x() && std::abs(d.dot(axis_y)) <= half_mm.y();
-}
-
-bool Footprint::Crosses(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const {
-  const Eigen::Vector2d la((a - centre).dot(axis_x), (a - centre).dot(axis_y));
-  const Eigen::Vector2d lb((b - centre).dot(axis_x), (b - centre).dot(axis_y));
-  const Eigen::Vector2d d = lb - la;
-  double t0 = 0.0, t1 = 1.0;
-  for (int k = 0; k < 2; ++k) {
-    if (std::abs(d[k]) < 1e-12) {
-      if (std::abs(la[k]) > half_mm[k]) return false;
-      continue;
-    }
-    double ta = (-half_mm[k] - la[k]) / d[k];
-    double tb = (half_mm[k] - la[k]) / d[k];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-    if (t0 > t1) return false;
-  }
-  return true;
-}
-
-bool Footprint::RowInterval(double y, double& x_min, double& x_max) const {
-  // The line (t, y): solve |(p - c).ax| <= hx and |(p - c).ay| <= hy for t.
-  double lo = -1e300, hi = 1e300;
-  for (int k = 0; k < 2; ++k) {
-    const Eigen::Vector2d& ax = k == 0 ? axis_x : axis_y;
-    const double base = (y - centre.y()) * ax.y() - centre.x() * ax.x();
-    if (std::abs(ax.x()) < 1e-12) {
-      if (std::abs(base) > half_mm[k]) return false;
-      continue;
-    }
-    double a = (-half_mm[k] - base) / ax.x();
-    double b = (half_mm[k] - base) / ax.x();
-    if (a > b) std::swap(a, b);
-    lo = std::max(lo, a);
-    hi = std::min(hi, b);
-  }
-  if (lo > hi) return false;
-  x_min = lo;
-  x_max = hi;
-  return true;
-}
-
-std::vector<Footprint> MakeFootprints(const scene::Scene& scene, double margin_mm) {
-  std::vector<Footprint> out;
-  for (const scene::Constraint& c : scene.constraints) {
-    Footprint f;
-    f.name = c.name;
-    Eigen::Vector3d half = 0.5 * c.size_mm;
-    Eigen::Matrix3d r = c.pose_mm.linear();
-    if (c.shape == scene::Constraint::Shape::kMesh && !c.mesh.vertices.empty()) {
-      Eigen::AlignedBox3d box;
-      for (const auto& v : c.mesh.vertices) box.extend(v);
-      f.centre = box.center().head<2>();
-      half = 0.5 * box.sizes();
-      r.setIdentity();
-    } else {
-      f.centre = c.pose_mm.translation().head<2>();
-    }
-    Eigen::Vector2d ax = r.col(0).head<2>();
-    if (ax.norm() < 1e-9) ax = Eigen::Vector2d::UnitX();
-    f.axis_x = ax.normalized();
-    f.axis_y = Eigen::Vector2d(-f.axis_x.y(), f.axis_x.x());
-    for (int k = 0; k < 2; ++k) {
-      const Eigen::Vector2d& a = k == 0 ? f.axis_x : f.axis_y;
-      double h = 0.0;
-      for (int i = 0; i < 3; ++i)
-        h += std::abs(Eigen::Vector2d(r.col(i).head<2>()).dot(a)) * half[i];
-      f.half_mm[k] = h + margin_mm;
-    }
-    out.push_back(f);
-  }
-  return out;
-}
-
 // ---- user code library ----------------------------------------------------------------------
 
 std::optional<UserCodeLibrary> ParseUserCodeLibrary(std::string_view yaml,
@@ -325,8 +245,8 @@ struct Plan {
   std::vector<std::vector<std::size_t>> per_head;  // region indices per head (0-based)
 };
 
-std::vector<Region> JumpRegions(const std::vector<Footprint>& fps, const Eigen::AlignedBox2d& box,
-                                double spacing) {
+std::vector<Region> JumpRegions(const std::vector<scene::Footprint>& fps,
+                                const Eigen::AlignedBox2d& box, double spacing) {
   std::vector<Region> out;
   const long rows = static_cast<long>(std::floor(box.sizes().y() / spacing + 1e-9)) + 1;
   for (long r = 0; r < rows; ++r) {
@@ -342,11 +262,11 @@ std::vector<Region> JumpRegions(const std::vector<Footprint>& fps, const Eigen::
 
 // Bays: the grid cut at every footprint's u and v edges; cells ordered band by band (v),
 // snaking along u.
-std::vector<Region> BayRegions(const std::vector<Footprint>& fps, const Eigen::AlignedBox2d& box,
-                               double spacing) {
+std::vector<Region> BayRegions(const std::vector<scene::Footprint>& fps,
+                               const Eigen::AlignedBox2d& box, double spacing) {
   std::vector<double> us = {box.min().x(), box.max().x()};
   std::vector<double> vs = {box.min().y(), box.max().y() + 1e-6};
-  for (const Footprint& f : fps) {
+  for (const scene::Footprint& f : fps) {
     const Eigen::Vector2d ext =
         f.axis_x.cwiseAbs() * f.half_mm.x() + f.axis_y.cwiseAbs() * f.half_mm.y();
     for (double s : {-1.0, 1.0}) {
@@ -444,7 +364,8 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
   // must stay clear of the constraints too, also while it turns in place at a row end.
   const double keep_out_mm =
       std::max(spread_mm, scene.head.envelope ? scene.head.envelope->radius_mm : 0.0);
-  const std::vector<Footprint> fps = MakeFootprints(scene, o.margin_mm + keep_out_mm);
+  const std::vector<scene::Footprint> fps =
+      scene::ConstraintFootprints(scene, o.margin_mm + keep_out_mm);
   // Constraint heights above the surface: what a retracted head must clear.
   double tallest_mm = 0.0;
   for (const scene::Constraint& c : scene.constraints) {
@@ -541,7 +462,7 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene, const
                      double turn_sign) {
     bool crosses = force_retract;
     if (have_pos && !crosses) {
-      for (const Footprint& f : fps) {
+      for (const scene::Footprint& f : fps) {
         if (f.Crosses(pos.head<2>(), to.head<2>())) {
           crosses = true;
           break;

@@ -81,22 +81,6 @@ std::string Errors(const verify::Report& r) {
   return s;
 }
 
-TEST(Footprint, RowIntervalAndCrossingAgree) {
-  Footprint f;
-  f.centre = {10, 5};
-  f.axis_x = Eigen::Vector2d(1, 1).normalized();
-  f.axis_y = Eigen::Vector2d(-1, 1).normalized();
-  f.half_mm = {4, 1};
-  double a = 0, b = 0;
-  ASSERT_TRUE(f.RowInterval(5.0, a, b));
-  EXPECT_TRUE(f.Contains({0.5 * (a + b), 5.0}));
-  EXPECT_FALSE(f.Contains({a - 1e-6, 5.0}));
-  EXPECT_FALSE(f.Contains({b + 1e-6, 5.0}));
-  EXPECT_TRUE(f.Crosses({a - 5, 5.0}, {b + 5, 5.0}));
-  EXPECT_FALSE(f.Crosses({a - 5, 5.0}, {a - 1, 5.0}));
-  EXPECT_FALSE(f.RowInterval(40.0, a, b));
-}
-
 TEST(RasterPlanner, WingWindowVerifiesCleanWithBothStrategies) {
   const auto s = Wing();
   for (RasterStrategy strategy : {RasterStrategy::kJump, RasterStrategy::kSerpentine}) {

@@ -46,23 +46,6 @@ std::optional<UserCodeLibrary> LoadUserCodeLibrary(const std::filesystem::path& 
                                                    const program::Dialect& dialect,
                                                    DiagnosticSink& sink);
 
-/// Where a constraint may not be stitched: its box projected on the part's (x, y) plane as an
-/// oriented rectangle (conservative for boxes tilted out of the plane), grown by a margin.
-struct Footprint {
-  std::string name;
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();   ///< part frame, mm
-  Eigen::Vector2d axis_x = Eigen::Vector2d::UnitX();  ///< unit
-  Eigen::Vector2d axis_y = Eigen::Vector2d::UnitY();  ///< unit, perpendicular to axis_x
-  Eigen::Vector2d half_mm = Eigen::Vector2d::Zero();  ///< half extents, margin included
-
-  bool Contains(const Eigen::Vector2d& p) const;
-  /// True if the segment a-b meets the rectangle (exact slab test).
-  bool Crosses(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
-  /// The x-range where the horizontal line y = `y` is inside; false if it misses.
-  bool RowInterval(double y, double& x_min, double& x_max) const;
-};
-std::vector<Footprint> MakeFootprints(const scene::Scene& scene, double margin_mm);
-
 struct RasterOptions {
   RasterStrategy strategy = RasterStrategy::kJump;
   double pitch_mm = 2.54;        ///< stitch length along a row (0.1 in: 10 stitches/in)
