@@ -151,6 +151,20 @@ TEST(CheckCommand, ProgrammeWithoutMovesIsAnError) {
   EXPECT_EQ(r.err.find("program-no-moves"), std::string::npos) << Describe(r);
 }
 
+TEST(CheckCommand, MalformedTypedHeaderValueIsAnErrorAtItsLine) {
+  // The header is typed once (program::ReadIdentity), for check as for verify: a stitch length
+  // that is not a positive number is bad input at the entry's line, never silently ignored.
+  const fs::path bad =
+      WriteTemp("bad_header.nc",
+                "(STITCHSIM scene=s head=rs535)\n(STITCHSIM stitch_length_mm=abc)\n"
+                "%\nG21 G90\nT1 M6\nG0 X0 Y0 Z0 A0 B0 C0\nM30\n%\n");
+  const RunResult r = RunCli({"check", bad.string()});
+  EXPECT_EQ(r.exit_code, 2) << Describe(r);
+  EXPECT_NE(r.err.find(bad.string() + ":2:1: error[gcode-bad-header]"), std::string::npos)
+      << Describe(r);
+  EXPECT_EQ(r.out, "") << Describe(r);
+}
+
 TEST(CheckCommand, MissingFileIsBadInput) {
   const RunResult r = RunCli({"check", (TempDir() / "does_not_exist.nc").string()});
   EXPECT_EQ(r.exit_code, 2) << Describe(r);
