@@ -4,7 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "stitchsim/scene/head_spec.h"
-#include "yaml_reader.h"
+#include "stitchsim/scene/yaml_reader.h"
 
 namespace stitchsim::scene::detail {
 
