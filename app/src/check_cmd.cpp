@@ -11,6 +11,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "stitchsim/program/dialect.h"
+#include "stitchsim/program/identity.h"
 #include "stitchsim/program/modal_state.h"
 
 namespace stitchsim::app {
@@ -50,6 +51,10 @@ int RunCheck(const CheckArgs& a) {
     }
     return kExitBadInput;
   }
+  // The typed header keys (stitch length, stitch count) as verify reads them: a malformed
+  // value is an error here too, not only when the programme is run.
+  const std::optional<program::ProgramIdentity> id =
+      program::ReadIdentity(summary.header, a.program, sink);
   if (summary.moves == 0) {
     // Parses, but there is nothing to run: no block moves the machine. (A file with no
     // blocks at all is gcode-empty-program, reported by the reader above.)
@@ -59,7 +64,9 @@ int RunCheck(const CheckArgs& a) {
   if (PrintDiagnostics(sink)) return kExitBadInput;  // warnings alone still pass
 
   std::string header;
-  for (const char* key : {"scene", "head", "path", "mode"}) {
+  if (id->scene) header += ", scene " + *id->scene;
+  if (id->head) header += ", head " + *id->head;
+  for (const char* key : {"path", "mode"}) {
     if (auto v = summary.header.Find(key))
       header += std::string(", ") + key + " " + std::string(*v);
   }

@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/dialect.h"
+#include "stitchsim/program/tool_pose.h"
 #include "stitchsim/sim/cell.h"
 #include "stitchsim/sim/kinematics.h"
 
@@ -27,10 +28,7 @@ constexpr double kDegToRad = kPi / 180.0;
 // Keys in the order written: status first, details after.
 using json = nlohmann::ordered_json;
 
-geom::EulerOrder DialectEulerOrder() {
-  return geom::ParseEulerOrder(program::Dialect::Default().euler_order)
-      .value_or(geom::EulerOrder{});
-}
+geom::EulerOrder DialectEulerOrder() { return program::EulerOrderOf(program::Dialect::Default()); }
 
 bool AllFinite(const std::vector<double>& values) {
   for (double v : values) {
@@ -157,10 +155,13 @@ int RunIk(const IkArgs& a) {
   const sim::RobotModel& robot = *ls->robot;
   const sim::CellSetup cell = sim::MakeCellSetup(robot, *ls->scene);
 
-  Eigen::Isometry3d target = Eigen::Isometry3d::Identity();
-  target.translation() = Eigen::Vector3d(a.pose[0], a.pose[1], a.pose[2]);
-  target.linear() = geom::RotationFromEuler(
-      DialectEulerOrder(), Eigen::Vector3d(a.pose[3], a.pose[4], a.pose[5]) * kDegToRad);
+  // The pose as a programme line would command it: X Y Z A B C.
+  program::MachineState commanded;
+  for (program::Axis axis : {program::Axis::kX, program::Axis::kY, program::Axis::kZ,
+                             program::Axis::kA, program::Axis::kB, program::Axis::kC}) {
+    commanded.axes[static_cast<std::size_t>(axis)] = a.pose[static_cast<std::size_t>(axis)];
+  }
+  const Eigen::Isometry3d target = *program::ToolPoseOf(commanded, DialectEulerOrder());
   const sim::ToolPoseSolution sol =
       sim::SolveToolPose(cell, target, a.rotator_deg * kDegToRad, a.rail_mm, nullptr);
   const sim::IkResult& ik = sol.ik;

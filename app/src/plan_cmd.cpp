@@ -174,16 +174,17 @@ int RunPlanAfpAuto(const PlanAfpArgs& a, const scene::PathSpec* path,
   auto world = sim::CollisionWorld::Create(*ls->scene, *ls->robot, sink);
   if (PrintDiagnostics(sink) || !world) return kExitBadInput;
   if (path != nullptr) path = ls->scene->FindPath(path->name);
-  InclineSearchOptions search;
+  planner::InclineSearchOptions search;
   search.max_deg = a.incline_max_deg;
   search.step_deg = a.incline_step_deg;
-  const InclineSearchResult r =
-      SearchAfpIncline(*ls, *world, path, options, search, sink, [](const InclineCandidate& c) {
-        if (c.pass) return;
-        std::printf("incline %s deg: rejected: %s\n", Deg(c.incline_rad).c_str(),
-                    c.failure.c_str());
-        std::fflush(stdout);
-      });
+  const planner::InclineSearchResult r =
+      planner::SearchAfpIncline(*ls->scene, path, options, search, VerifyJudge(*ls, *world), sink,
+                                [](const planner::InclineCandidate& c) {
+                                  if (c.pass) return;
+                                  std::printf("incline %s deg: rejected: %s\n",
+                                              Deg(c.incline_rad).c_str(), c.failure.c_str());
+                                  std::fflush(stdout);
+                                });
   if (PrintDiagnostics(sink)) return kExitBadInput;
   if (!r.error.empty()) {
     PrintError("plan-incline-check", "--incline auto: " + r.error);
@@ -207,7 +208,7 @@ int RunPlanAfpAuto(const PlanAfpArgs& a, const scene::PathSpec* path,
     return kExitFindings;
   }
   const planner::AfpPlan& plan = *r.plan;
-  const InclineCandidate& won = r.candidates.back();
+  const planner::InclineCandidate& won = r.candidates.back();
   std::string feeds = "feed as planned";
   if (won.slowed_moves > 0) {
     char buf[128];

@@ -3,9 +3,9 @@
 #include <fstream>
 
 #include "commands.h"
-#include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/modal_state.h"
 #include "stitchsim/program/reader.h"
+#include "stitchsim/program/tool_pose.h"
 
 namespace stitchsim::app {
 namespace {
@@ -26,8 +26,7 @@ std::optional<ProgramOverlay> ProgramStitchOverlay(const LoadedScene& /*ls*/,
     return std::nullopt;
   }
   const program::Dialect& dialect = program::Dialect::Default();
-  const geom::EulerOrder order =
-      geom::ParseEulerOrder(dialect.euler_order).value_or(geom::EulerOrder{});
+  const geom::EulerOrder order = program::EulerOrderOf(dialect);
   BoundedDiagnosticSink sink(50);
   program::ProgramReader reader(in, dialect, program_file, sink);
   program::ModalState state(dialect, program_file, sink);
@@ -43,15 +42,7 @@ std::optional<ProgramOverlay> ProgramStitchOverlay(const LoadedScene& /*ls*/,
     const auto& z = s[program::Axis::kZ];
     if (!x || !y || !z) continue;
     const Eigen::Vector3d p(*x, *y, *z);
-    if (!out.first_tool_in_part_mm) {
-      if (auto abc = state.AnglesRad()) {
-        Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
-        tool.translation() = p;
-        tool.linear() =
-            geom::RotationFromEuler(order, Eigen::Vector3d((*abc)[0], (*abc)[1], (*abc)[2]));
-        out.first_tool_in_part_mm = tool;
-      }
-    }
+    if (!out.first_tool_in_part_mm) out.first_tool_in_part_mm = program::ToolPoseOf(s, order);
     const auto& u_now = s[program::Axis::kDrive];
     const auto& u_before = state.Previous()[program::Axis::kDrive];
     auto& points = out.stitch_points_part_mm;

@@ -140,6 +140,72 @@ render::CameraView FrameView(const std::vector<Eigen::Vector3d>& points_m, bool 
   return v;
 }
 
+namespace {
+
+// What to draw: the scene's paths, or the request's point sets instead; `radius_scale` gets
+// each overlay's radius factor.
+std::vector<render::Overlay> RequestOverlays(const LoadedScene& ls, const RenderRequest& req,
+                                             const Eigen::Isometry3d& part_world, bool close_up,
+                                             std::vector<double>& radius_scale) {
+  std::vector<render::Overlay> overlays;
+  if (req.point_sets.empty()) {
+    overlays = PathOverlays(*ls.scene, part_world, close_up ? 0.0015 : 0.006);
+  }
+  radius_scale.assign(overlays.size(), 1.0);
+  for (const auto& set : req.point_sets) {
+    render::Overlay o;
+    o.label = set.label;
+    o.polyline = set.polyline;
+    o.radius_m = close_up ? 0.0015 : 0.005;
+    for (int i = 0; i < 4; ++i) o.rgba[i] = set.rgba[static_cast<std::size_t>(i)];
+    for (const auto& p : set.points_part_mm) {
+      // Stitch points sit on the mold surface, under the preform: draw them on its top.
+      Eigen::Vector3d q = p;
+      if (!set.polyline) {
+        const geom::SurfaceProjection f = ls.scene->surface->Project(p);
+        q = f.point + (ls.scene->preform_thickness_mm + 0.5) * f.normal;
+      }
+      o.points_m.push_back(part_world * (q / 1000.0));
+    }
+    overlays.push_back(std::move(o));
+    radius_scale.push_back(set.radius_scale);
+  }
+  return overlays;
+}
+
+// The world points (m) the camera must frame for the requested view.
+std::vector<Eigen::Vector3d> InterestPoints(const RenderRequest& req,
+                                            const std::vector<render::Overlay>& overlays,
+                                            const mjModel& model, const mjData& data,
+                                            const Eigen::Isometry3d& part_world, bool close_up,
+                                            bool part_view) {
+  std::vector<Eigen::Vector3d> interest;
+  if (close_up) {
+    interest.push_back(req.tool_world_m.translation());
+    interest.push_back(req.tool_world_m.translation() + Eigen::Vector3d(0, 0, 0.6));
+    return interest;
+  }
+  for (const auto& o : overlays)
+    interest.insert(interest.end(), o.points_m.begin(), o.points_m.end());
+  if (part_view) {
+    interest.push_back(req.tool_world_m.translation());
+    return interest;
+  }
+  const int base = mj_name2id(&model, mjOBJ_BODY, "base_link");
+  const int l3 = mj_name2id(&model, mjOBJ_BODY, "link_3");
+  for (int b : {base, l3}) {
+    interest.emplace_back(data.xpos[3 * b], data.xpos[3 * b + 1], data.xpos[3 * b + 2]);
+  }
+  // A stretch of the rail on either side of the carriage, so it reads as a rail.
+  const Eigen::Vector3d carriage(data.xpos[3 * base], data.xpos[3 * base + 1], 0.0);
+  interest.push_back(carriage - Eigen::Vector3d(1.5, 0, 0));
+  interest.push_back(carriage + Eigen::Vector3d(1.5, 0, 0));
+  interest.emplace_back(part_world.translation());
+  return interest;
+}
+
+}  // namespace
+
 int RunRenderScene(const LoadedScene& ls, const RenderRequest& req) {
   DiagnosticSink sink;
   render::MjModelPtr model = render::LoadSceneModel(*ls.scene, sink);
@@ -169,52 +235,12 @@ int RunRenderScene(const LoadedScene& ls, const RenderRequest& req) {
     for (int c = 0; c < 3; ++c) part_world.linear()(r, c) = data->xmat[9 * part_body + 3 * r + c];
   }
   const bool close_up = req.view == "head";
-  std::vector<render::Overlay> overlays;
-  if (req.point_sets.empty()) {
-    overlays = PathOverlays(*ls.scene, part_world, close_up ? 0.0015 : 0.006);
-  }
-  std::vector<double> radius_scale(overlays.size(), 1.0);
-  for (const auto& set : req.point_sets) {
-    render::Overlay o;
-    o.label = set.label;
-    o.polyline = set.polyline;
-    o.radius_m = close_up ? 0.0015 : 0.005;
-    for (int i = 0; i < 4; ++i) o.rgba[i] = set.rgba[static_cast<std::size_t>(i)];
-    for (const auto& p : set.points_part_mm) {
-      // Stitch points sit on the mold surface, under the preform: draw them on its top.
-      Eigen::Vector3d q = p;
-      if (!set.polyline) {
-        const geom::SurfaceProjection f = ls.scene->surface->Project(p);
-        q = f.point + (ls.scene->preform_thickness_mm + 0.5) * f.normal;
-      }
-      o.points_m.push_back(part_world * (q / 1000.0));
-    }
-    overlays.push_back(std::move(o));
-    radius_scale.push_back(set.radius_scale);
-  }
-  std::vector<Eigen::Vector3d> interest;
+  std::vector<double> radius_scale;
+  std::vector<render::Overlay> overlays =
+      RequestOverlays(ls, req, part_world, close_up, radius_scale);
   const bool part_view = req.view == "part";
-  if (close_up) {
-    interest.push_back(req.tool_world_m.translation());
-    interest.push_back(req.tool_world_m.translation() + Eigen::Vector3d(0, 0, 0.6));
-  } else if (part_view) {
-    for (const auto& o : overlays)
-      interest.insert(interest.end(), o.points_m.begin(), o.points_m.end());
-    interest.push_back(req.tool_world_m.translation());
-  } else {
-    for (const auto& o : overlays)
-      interest.insert(interest.end(), o.points_m.begin(), o.points_m.end());
-    const int base = mj_name2id(model.get(), mjOBJ_BODY, "base_link");
-    const int l3 = mj_name2id(model.get(), mjOBJ_BODY, "link_3");
-    for (int b : {base, l3}) {
-      interest.emplace_back(data->xpos[3 * b], data->xpos[3 * b + 1], data->xpos[3 * b + 2]);
-    }
-    // A stretch of the rail on either side of the carriage, so it reads as a rail.
-    const Eigen::Vector3d carriage(data->xpos[3 * base], data->xpos[3 * base + 1], 0.0);
-    interest.push_back(carriage - Eigen::Vector3d(1.5, 0, 0));
-    interest.push_back(carriage + Eigen::Vector3d(1.5, 0, 0));
-    interest.emplace_back(part_world.translation());
-  }
+  const std::vector<Eigen::Vector3d> interest =
+      InterestPoints(req, overlays, *model, *data, part_world, close_up, part_view);
   render::CameraView view = FrameView(interest, close_up);
   if (part_view) {
     // The stitches from above at a slant, close enough to tell them apart.

@@ -75,6 +75,7 @@ class Plane final : public Surface {
     dom_.max = Eigen::Vector2d(su / 2, sv / 2);
   }
   std::string Kind() const override { return "plane"; }
+  bool IsHeightField() const override { return true; }
   Domain2 Domain() const override { return dom_; }
   Eigen::Vector3d Point(const Eigen::Vector2d& uv) const override {
     return Eigen::Vector3d(uv.x(), uv.y(), 0.0);
@@ -203,6 +204,7 @@ class PolyHeightField final : public Surface {
  public:
   PolyHeightField(const Eigen::Matrix4d& c, const Domain2& d) : c_(c), dom_(d) {}
   std::string Kind() const override { return "polynomial"; }
+  bool IsHeightField() const override { return true; }
   Domain2 Domain() const override { return dom_; }
   Eigen::Vector3d Point(const Eigen::Vector2d& uv) const override {
     return Eigen::Vector3d(uv.x(), uv.y(), Eval(uv, 0, 0));
@@ -294,6 +296,8 @@ class MeshSurface final : public Surface {
     }
   }
   std::string Kind() const override { return "mesh"; }
+  bool IsHeightField() const override { return true; }
+  bool CoversDomain() const override { return false; }
   Domain2 Domain() const override { return dom_; }
   Eigen::Vector3d Point(const Eigen::Vector2d& uv) const override {
     const Hit h = Locate(uv);

@@ -142,6 +142,27 @@ std::unique_ptr<geom::Curve2> MakeLayAngleCourse(const geom::Domain2& domain,
   return curve;
 }
 
+namespace {
+
+// The B and C ranges over the course and the largest C step between points.
+void AxisRanges(AfpPlan& plan) {
+  plan.b_min_rad = plan.b_max_rad = plan.points.front().axes.b_rad;
+  plan.c_min_rad = plan.c_max_rad = plan.points.front().axes.c_rad;
+  for (std::size_t i = 0; i < plan.points.size(); ++i) {
+    const AfpHeadAxes& a = plan.points[i].axes;
+    plan.b_min_rad = std::min(plan.b_min_rad, a.b_rad);
+    plan.b_max_rad = std::max(plan.b_max_rad, a.b_rad);
+    plan.c_min_rad = std::min(plan.c_min_rad, a.c_rad);
+    plan.c_max_rad = std::max(plan.c_max_rad, a.c_rad);
+    if (i > 0) {
+      plan.c_max_step_rad =
+          std::max(plan.c_max_step_rad, std::abs(a.c_rad - plan.points[i - 1].axes.c_rad));
+    }
+  }
+}
+
+}  // namespace
+
 std::optional<AfpPlan> PlanAfpCourse(const scene::Scene& scene, const scene::PathSpec* path,
                                      const AfpPlanOptions& options, DiagnosticSink& sink) {
   const SourceLocation where = path != nullptr ? path->where : SourceLocation{scene.file.string()};
@@ -230,19 +251,7 @@ std::optional<AfpPlan> PlanAfpCourse(const scene::Scene& scene, const scene::Pat
     p.tool.translation() = p.position;
     plan.points.push_back(p);
   }
-  plan.b_min_rad = plan.b_max_rad = plan.points.front().axes.b_rad;
-  plan.c_min_rad = plan.c_max_rad = plan.points.front().axes.c_rad;
-  for (std::size_t i = 0; i < plan.points.size(); ++i) {
-    const AfpHeadAxes& a = plan.points[i].axes;
-    plan.b_min_rad = std::min(plan.b_min_rad, a.b_rad);
-    plan.b_max_rad = std::max(plan.b_max_rad, a.b_rad);
-    plan.c_min_rad = std::min(plan.c_min_rad, a.c_rad);
-    plan.c_max_rad = std::max(plan.c_max_rad, a.c_rad);
-    if (i > 0) {
-      plan.c_max_step_rad =
-          std::max(plan.c_max_step_rad, std::abs(a.c_rad - plan.points[i - 1].axes.c_rad));
-    }
-  }
+  AxisRanges(plan);
   CheckTravel(plan);
   return plan;
 }

@@ -118,40 +118,101 @@ struct CoupledNeedle {
   double max_sq;
 };
 
+// The slerp from `from` to `to` as one turn of `angle` (in [0, pi]) about `axis` (unit, in
+// the `from` frame); angle 0 (axis z) when the rotations are equal.
+void SlerpTurn(const Eigen::Isometry3d& from, const Eigen::Isometry3d& to, double& angle,
+               Eigen::Vector3d& axis) {
+  angle = 0.0;
+  axis = Eigen::Vector3d::UnitZ();
+  if (from.linear() == to.linear()) return;  // a straight row repeats its frame exactly
+  const Eigen::Quaterniond qa(from.linear());
+  Eigen::Quaterniond qb(to.linear());
+  if (qa.dot(qb) < 0.0) qb.coeffs() = -qb.coeffs();  // the short way, as slerp goes
+  const Eigen::Quaterniond rel = qa.conjugate() * qb;
+  const double vec_norm = rel.vec().norm();
+  angle = 2.0 * std::atan2(vec_norm, std::abs(rel.w()));
+  if (vec_norm > 0.0) axis = rel.vec() / vec_norm;
+}
+
+// Each needle's axis and its lowest and highest shaft points, as entry value (r_in) +
+// sin * A-term (a_mat) + versine * B-term (b_mat).
+void PrepareNeedles(const ProcessModel& model, const Eigen::Matrix3d& r_in,
+                    const Eigen::Matrix3d& a_mat, const Eigen::Matrix3d& b_mat,
+                    std::span<CoupledNeedle> needles) {
+  double z[2] = {0.0, 0.0};
+  if (!model.shaft_heights_mm.empty()) {
+    const auto [lo, hi] =
+        std::minmax_element(model.shaft_heights_mm.begin(), model.shaft_heights_mm.end());
+    z[0] = *lo;
+    z[1] = *hi;
+  }
+  for (std::size_t n = 0; n < needles.size(); ++n) {
+    const scene::NeedleSpec& spec = model.needles[n];
+    CoupledNeedle& nd = needles[n];
+    nd.max_sq = 0.0;
+    nd.axis0 = Vec3(r_in * spec.direction);
+    nd.axis_a = Vec3(a_mat * spec.direction);
+    nd.axis_b = Vec3(b_mat * spec.direction);
+    for (int j = 0; j < 2; ++j) {
+      const Eigen::Vector3d p = ShaftPoint(spec, z[j]);
+      nd.point_a[j] = Vec3(a_mat * p);
+      nd.point_b[j] = Vec3(b_mat * p);
+    }
+  }
+}
+
+// One block of `count` samples (sin sn, versine vs, shared drift h) for one needle: the
+// largest squared drift of its shaft points across the needle, into nd.max_sq. q0 and q1 are
+// scratch space of `count`.
+inline void SideDriftBlock(int count, const double* sn, const double* vs, const double* hx,
+                           const double* hy, const double* hz, double* q0, double* q1,
+                           CoupledNeedle& nd) {
+  for (int j = 0; j < count; ++j) {
+    const double ax = nd.axis0.x + sn[j] * nd.axis_a.x + vs[j] * nd.axis_b.x;
+    const double ay = nd.axis0.y + sn[j] * nd.axis_a.y + vs[j] * nd.axis_b.y;
+    const double az = nd.axis0.z + sn[j] * nd.axis_a.z + vs[j] * nd.axis_b.z;
+    double* q[2] = {q0, q1};
+    for (int p = 0; p < 2; ++p) {
+      double dx = sn[j] * nd.point_a[p].x + vs[j] * nd.point_b[p].x + hx[j];
+      double dy = sn[j] * nd.point_a[p].y + vs[j] * nd.point_b[p].y + hy[j];
+      double dz = sn[j] * nd.point_a[p].z + vs[j] * nd.point_b[p].z + hz[j];
+      // Motion along the needle is the stitch itself.
+      const double along = dx * ax + dy * ay + dz * az;
+      dx -= along * ax;
+      dy -= along * ay;
+      dz -= along * az;
+      q[p][j] = dx * dx + dy * dy + dz * dz;
+    }
+  }
+  for (int j = 0; j < count; ++j) nd.max_sq = std::max(nd.max_sq, std::max(q0[j], q1[j]));
+}
+
 }  // namespace
 
+// The metrics NeedleWindow gives for InterpolatePose at the phases
+//   phase_in + (phase_out - phase_in) * i / samples,  i = 0 (entry) .. samples,
+// computed without a quaternion conversion per sample (the planner calls this for every
+// stitch). The drive advances linearly along the line, so line fraction = cycle phase.
+//  - Slerp turns about one axis (in the `from` frame) at a constant rate:
+//    R(s) = R_from Rot(axis, s angle). From the entry, sample i is turned by Rot(axis,
+//    i delta), delta = angle (phase_out - phase_in) / samples, so
+//    R_i = R_in (I + sin K + vers K^2) = R_in + sin A + vers B  (K = [axis]x), with sin
+//    and versine of i delta from the angle-addition recurrence. The rotation since entry
+//    grows with i: its largest value is at the last sample.
+//  - A shaft point p drifts by (R_i - R_in) p + walk R_i e_y + travel: affine in its
+//    height, with a convex norm, so over the shaft heights the largest drift is at the
+//    lowest or the highest one.
+//  - With no rotation every drift and the walk scale with the travel, so the last sample
+//    holds every maximum.
 WindowMetrics EvaluateCoupledStitch(const ProcessModel& model, const Eigen::Isometry3d& from,
                                     const Eigen::Isometry3d& to, int samples) {
-  // The metrics NeedleWindow gives for InterpolatePose at the phases
-  //   phase_in + (phase_out - phase_in) * i / samples,  i = 0 (entry) .. samples,
-  // computed without a quaternion conversion per sample (the planner calls this for every
-  // stitch). The drive advances linearly along the line, so line fraction = cycle phase.
-  //  - Slerp turns about one axis (in the `from` frame) at a constant rate:
-  //    R(s) = R_from Rot(axis, s angle). From the entry, sample i is turned by Rot(axis,
-  //    i delta), delta = angle (phase_out - phase_in) / samples, so
-  //    R_i = R_in (I + sin K + vers K^2) = R_in + sin A + vers B  (K = [axis]x), with sin
-  //    and versine of i delta from the angle-addition recurrence. The rotation since entry
-  //    grows with i: its largest value is at the last sample.
-  //  - A shaft point p drifts by (R_i - R_in) p + walk R_i e_y + travel: affine in its
-  //    height, with a convex norm, so over the shaft heights the largest drift is at the
-  //    lowest or the highest one.
-  //  - With no rotation every drift and the walk scale with the travel, so the last sample
-  //    holds every maximum.
   WindowMetrics m;
   m.side_force_mm.assign(model.needles.size(), 0.0);
   if (samples < 1) return m;
 
   double angle = 0.0;  // [0, pi]
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
-  if (from.linear() != to.linear()) {  // a straight row repeats its frame exactly
-    const Eigen::Quaterniond qa(from.linear());
-    Eigen::Quaterniond qb(to.linear());
-    if (qa.dot(qb) < 0.0) qb.coeffs() = -qb.coeffs();  // the short way, as slerp goes
-    const Eigen::Quaterniond rel = qa.conjugate() * qb;
-    const double vec_norm = rel.vec().norm();
-    angle = 2.0 * std::atan2(vec_norm, std::abs(rel.w()));
-    if (vec_norm > 0.0) axis = rel.vec() / vec_norm;
-  }
+  SlerpTurn(from, to, angle, axis);
 
   const double s_in = model.phase_in;
   const double span = model.phase_out - model.phase_in;
@@ -170,13 +231,6 @@ WindowMetrics EvaluateCoupledStitch(const ProcessModel& model, const Eigen::Isom
   m.rotation_total_rad = total;
 
   const bool have_heights = !model.shaft_heights_mm.empty();
-  double z[2] = {0.0, 0.0};
-  if (have_heights) {
-    const auto [lo, hi] =
-        std::minmax_element(model.shaft_heights_mm.begin(), model.shaft_heights_mm.end());
-    z[0] = *lo;
-    z[1] = *hi;
-  }
   // Heads have one or two needles: no allocation (and no zeroing) for those.
   std::array<CoupledNeedle, 2> few;
   std::vector<CoupledNeedle> many;
@@ -184,19 +238,7 @@ WindowMetrics EvaluateCoupledStitch(const ProcessModel& model, const Eigen::Isom
   const std::span<CoupledNeedle> needles =
       many.empty() ? std::span<CoupledNeedle>(few.data(), model.needles.size())
                    : std::span<CoupledNeedle>(many);
-  for (std::size_t n = 0; n < needles.size(); ++n) {
-    const scene::NeedleSpec& spec = model.needles[n];
-    CoupledNeedle& nd = needles[n];
-    nd.max_sq = 0.0;
-    nd.axis0 = Vec3(r_in * spec.direction);
-    nd.axis_a = Vec3(a_mat * spec.direction);
-    nd.axis_b = Vec3(b_mat * spec.direction);
-    for (int j = 0; j < 2; ++j) {
-      const Eigen::Vector3d p = ShaftPoint(spec, z[j]);
-      nd.point_a[j] = Vec3(a_mat * p);
-      nd.point_b[j] = Vec3(b_mat * p);
-    }
-  }
+  PrepareNeedles(model, r_in, a_mat, b_mat, needles);
   const Vec3 y0(r_in.col(1)), ya(a_mat.col(1)), yb(b_mat.col(1));
 
   const double half = 0.5 * span * angle / samples;
@@ -240,26 +282,7 @@ WindowMetrics EvaluateCoupledStitch(const ProcessModel& model, const Eigen::Isom
     }
     m.walk_demand_mm = walk_max;
     if (!have_heights) continue;
-    for (CoupledNeedle& nd : needles) {
-      for (int j = 0; j < count; ++j) {
-        const double ax = nd.axis0.x + sn[j] * nd.axis_a.x + vs[j] * nd.axis_b.x;
-        const double ay = nd.axis0.y + sn[j] * nd.axis_a.y + vs[j] * nd.axis_b.y;
-        const double az = nd.axis0.z + sn[j] * nd.axis_a.z + vs[j] * nd.axis_b.z;
-        double* q[2] = {q0, q1};
-        for (int p = 0; p < 2; ++p) {
-          double dx = sn[j] * nd.point_a[p].x + vs[j] * nd.point_b[p].x + hx[j];
-          double dy = sn[j] * nd.point_a[p].y + vs[j] * nd.point_b[p].y + hy[j];
-          double dz = sn[j] * nd.point_a[p].z + vs[j] * nd.point_b[p].z + hz[j];
-          // Motion along the needle is the stitch itself.
-          const double along = dx * ax + dy * ay + dz * az;
-          dx -= along * ax;
-          dy -= along * ay;
-          dz -= along * az;
-          q[p][j] = dx * dx + dy * dy + dz * dz;
-        }
-      }
-      for (int j = 0; j < count; ++j) nd.max_sq = std::max(nd.max_sq, std::max(q0[j], q1[j]));
-    }
+    for (CoupledNeedle& nd : needles) SideDriftBlock(count, sn, vs, hx, hy, hz, q0, q1, nd);
   }
   for (std::size_t n = 0; n < needles.size(); ++n)
     m.side_force_mm[n] = std::sqrt(needles[n].max_sq);

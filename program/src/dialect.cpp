@@ -112,9 +112,9 @@ bool CheckCodes(const std::vector<NamedCode>& named, const KeyLocator& locate, D
   return ok;
 }
 
-}  // namespace
-
-bool ValidateDialectAt(const Dialect& d, const KeyLocator& locate, DiagnosticSink& sink) {
+// Axis, feed, block, tool and parameter letters: one upper-case A-Z other than G and M each,
+// all distinct.
+bool CheckLetters(const Dialect& d, const KeyLocator& locate, DiagnosticSink& sink) {
   bool ok = true;
   std::vector<NamedLetter> letters;
   for (std::size_t i = 0; i < kAxisCount; ++i) {
@@ -142,7 +142,12 @@ bool ValidateDialectAt(const Dialect& d, const KeyLocator& locate, DiagnosticSin
       }
     }
   }
+  return ok;
+}
 
+// Euler order, default units, decimals and the line length limit.
+bool CheckFormat(const Dialect& d, const KeyLocator& locate, DiagnosticSink& sink) {
+  bool ok = true;
   const std::string& e = d.euler_order;
   const auto is_axis = [](char c) { return c == 'X' || c == 'Y' || c == 'Z'; };
   if (e.size() != 3 || !is_axis(e[0]) || !is_axis(e[1]) || !is_axis(e[2]) || e[0] == e[1] ||
@@ -171,7 +176,12 @@ bool ValidateDialectAt(const Dialect& d, const KeyLocator& locate, DiagnosticSin
                "max_line_length must be in 64..65536");
     ok = false;
   }
+  return ok;
+}
 
+// G and M codes: in range and distinct; the user macro range clear of the named M codes.
+bool CheckGAndMCodes(const Dialect& d, const KeyLocator& locate, DiagnosticSink& sink) {
+  bool ok = true;
   std::vector<NamedCode> g = {{"g_codes.rapid", d.g.rapid},
                               {"g_codes.feed", d.g.feed},
                               {"g_codes.inch", d.g.inch},
@@ -205,7 +215,12 @@ bool ValidateDialectAt(const Dialect& d, const KeyLocator& locate, DiagnosticSin
       }
     }
   }
+  return ok;
+}
 
+// Tool entries: numbers in range and distinct, head names [a-z0-9_-].
+bool CheckTools(const Dialect& d, const KeyLocator& locate, DiagnosticSink& sink) {
+  bool ok = true;
   for (std::size_t i = 0; i < d.tools.size(); ++i) {
     const ToolEntry& tool = d.tools[i];
     const std::string key = "tools." + std::to_string(tool.number);
@@ -231,6 +246,16 @@ bool ValidateDialectAt(const Dialect& d, const KeyLocator& locate, DiagnosticSin
       }
     }
   }
+  return ok;
+}
+
+}  // namespace
+
+bool ValidateDialectAt(const Dialect& d, const KeyLocator& locate, DiagnosticSink& sink) {
+  bool ok = CheckLetters(d, locate, sink);
+  ok = CheckFormat(d, locate, sink) && ok;
+  ok = CheckGAndMCodes(d, locate, sink) && ok;
+  ok = CheckTools(d, locate, sink) && ok;
   return ok;
 }
 

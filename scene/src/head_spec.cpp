@@ -6,7 +6,7 @@
 #include "stitchsim/common/files.h"
 #include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
-#include "yaml_reader.h"
+#include "stitchsim/scene/yaml_reader.h"
 
 namespace stitchsim::scene {
 namespace {

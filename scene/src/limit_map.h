@@ -4,7 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "stitchsim/scene/rule_limits.h"
-#include "yaml_reader.h"
+#include "stitchsim/scene/yaml_reader.h"
 
 namespace stitchsim::scene::detail {
 

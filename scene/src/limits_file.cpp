@@ -1,7 +1,7 @@
 #include "stitchsim/scene/limits_file.h"
 
 #include "limit_map.h"
-#include "yaml_reader.h"
+#include "stitchsim/scene/yaml_reader.h"
 
 namespace stitchsim::scene {
 

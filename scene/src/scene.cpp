@@ -9,7 +9,7 @@
 #include "stitchsim/common/limits.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/geom/stl.h"
-#include "yaml_reader.h"
+#include "stitchsim/scene/yaml_reader.h"
 
 namespace stitchsim::scene {
 namespace {

@@ -1,4 +1,4 @@
-#include "yaml_reader.h"
+#include "stitchsim/scene/yaml_reader.h"
 
 #include <cerrno>
 #include <charconv>
@@ -63,8 +63,12 @@ std::optional<YAML::Node> YamlReader::LoadFile() {
                 f.problem == FileProblem::kMissing ? "file not found: " + file_.string() : f.error);
     return std::nullopt;
   }
+  return LoadText(f.text);
+}
+
+std::optional<YAML::Node> YamlReader::LoadText(const std::string& text) {
   try {
-    YAML::Node root = YAML::Load(f.text);
+    YAML::Node root = YAML::Load(text);
     if (!root.IsDefined() || root.IsNull()) {
       sink_.Error(prefix_ + "-empty", {file_.string(), 1, 1}, "file is empty");
       return std::nullopt;
@@ -201,6 +205,24 @@ std::optional<double> YamlReader::NumberText(const YAML::Node& node, std::string
               node.Scalar() + "'");
   }
   return v;
+}
+
+std::optional<long> YamlReader::Integer(const YAML::Node& node, std::string_view what, long min,
+                                        long max) {
+  const std::optional<double> v = Number(node, what);
+  if (!v) return std::nullopt;
+  if (*v != std::floor(*v)) {
+    Error(node, "bad-number",
+          std::string(what) + " must be a whole number, got '" + node.Scalar() + "'");
+    return std::nullopt;
+  }
+  if (*v < static_cast<double>(min) || *v > static_cast<double>(max)) {
+    Error(node, "out-of-range",
+          std::string(what) + " must lie in " + std::to_string(min) + ".." + std::to_string(max) +
+              ", got " + node.Scalar());
+    return std::nullopt;
+  }
+  return static_cast<long>(*v);
 }
 
 std::optional<std::string> YamlReader::String(const YAML::Node& node, std::string_view what) {

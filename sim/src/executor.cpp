@@ -9,6 +9,7 @@
 #include "stitchsim/common/limits.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/modal_state.h"
+#include "stitchsim/program/tool_pose.h"
 
 namespace stitchsim::sim {
 namespace {
@@ -41,7 +42,7 @@ class Executor {
   Executor(const CellSetup& cell, const process::ProcessModel& process,
            const program::Dialect& dialect, const ExecuteOptions& options, TraceSink& sink)
       : cell_(cell), process_(process), options_(options), sink_(sink) {
-    order_ = geom::ParseEulerOrder(dialect.euler_order).value_or(geom::EulerOrder{});
+    order_ = program::EulerOrderOf(dialect);
   }
 
   void Move(const program::MachineState& before, const program::MachineState& after,
@@ -266,9 +267,7 @@ class Executor {
 
   Pose PoseOf(const program::MachineState& st) const {
     Pose p;
-    p.tool.translation() = Eigen::Vector3d(*st[Axis::kX], *st[Axis::kY], *st[Axis::kZ]);
-    p.tool.linear() = geom::RotationFromEuler(
-        order_, Eigen::Vector3d(*st[Axis::kA], *st[Axis::kB], *st[Axis::kC]) * kDeg);
+    p.tool = *program::ToolPoseOf(st, order_);  // the caller checked X Y Z A B C are set
     p.drive = st[Axis::kDrive].value_or(0.0);
     p.path = st[Axis::kPathLength].value_or(0.0);
     p.rail_mm = st[Axis::kRail];
@@ -305,8 +304,7 @@ std::optional<JointVector> ChooseStartBranch(const CellSetup& cell, const progra
   BoundedDiagnosticSink ignored(4);
   program::ProgramReader reader(in, dialect, file_name, ignored);
   program::ModalState state(dialect, file_name, ignored);
-  const geom::EulerOrder order =
-      geom::ParseEulerOrder(dialect.euler_order).value_or(geom::EulerOrder{});
+  const geom::EulerOrder order = program::EulerOrderOf(dialect);
   struct Track {
     ArmJointVector start, prev, lo, hi;
   };
@@ -376,10 +374,8 @@ std::optional<JointVector> ChooseStartBranch(const CellSetup& cell, const progra
     for (Axis a : {Axis::kX, Axis::kY, Axis::kZ, Axis::kA, Axis::kB, Axis::kC}) {
       if (!st[a]) return std::nullopt;
     }
-    Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
-    tool.translation() = Eigen::Vector3d(*st[Axis::kX], *st[Axis::kY], *st[Axis::kZ]) / 1000.0;
-    tool.linear() = geom::RotationFromEuler(
-        order, Eigen::Vector3d(*st[Axis::kA], *st[Axis::kB], *st[Axis::kC]) * kDeg);
+    Eigen::Isometry3d tool = *program::ToolPoseOf(st, order);
+    tool.translation() /= 1000.0;  // metres
     const double rot = st[Axis::kRotator].value_or(0.0) * kDeg;
     // Continuity needs only poses a few degrees apart: skip the ones that barely moved
     // (but never the last one, kept as `pending`).

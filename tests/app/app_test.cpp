@@ -151,6 +151,61 @@ TEST(CheckCommand, ProgrammeWithoutMovesIsAnError) {
   EXPECT_EQ(r.err.find("program-no-moves"), std::string::npos) << Describe(r);
 }
 
+TEST(CheckCommand, MalformedTypedHeaderValueIsAnErrorAtItsLine) {
+  // The header is typed once (program::ReadIdentity), for check as for verify: a stitch length
+  // that is not a positive number is bad input at the entry's line, never silently ignored.
+  const fs::path bad =
+      WriteTemp("bad_header.nc",
+                "(STITCHSIM scene=s head=rs535)\n(STITCHSIM stitch_length_mm=abc)\n"
+                "%\nG21 G90\nT1 M6\nG0 X0 Y0 Z0 A0 B0 C0\nM30\n%\n");
+  const RunResult r = RunCli({"check", bad.string()});
+  EXPECT_EQ(r.exit_code, 2) << Describe(r);
+  EXPECT_NE(r.err.find(bad.string() + ":2:1: error[gcode-bad-header]"), std::string::npos)
+      << Describe(r);
+  EXPECT_EQ(r.out, "") << Describe(r);
+}
+
+// The raster planner's code library is read by the scene YAML reader: an unknown key and a bad
+// value are each reported at their own line and column, and `plan raster` exits 2.
+TEST(PlanRasterCommand, CodeLibraryErrorsAtTheirPositionExitTwo) {
+  const std::string scene = (kSource / "scenes" / "flat_straight.yaml").string();
+  const fs::path out = TempDir() / "lib_raster.nc";
+  struct Case {
+    std::string name, yaml, expected;
+  };
+  const std::vector<Case> cases = {
+      {"lib_unknown_key.yaml",
+       "blocks:\n  - {name: cool, at: row_start, m: [110]}\n  - name: mark\n    at: row_start\n"
+       "    m: [111]\n    colour: red\n",
+       ":6:5: error[library-unknown-key]"},
+      {"lib_bad_value.yaml",
+       "blocks:\n  - name: cool\n    at: every_stitches\n    every: many\n    m: [110]\n",
+       ":4:12: error[library-bad-number]"},
+      {"lib_not_user.yaml", "blocks:\n  - {name: cool, at: row_start, m: [110, 30]}\n",
+       ":2:42: error[library-m-not-user]"},
+      {"lib_bad_event.yaml", "blocks:\n  - {name: cool, at: sometimes, m: [110]}\n",
+       ":2:22: error[library-bad-event]"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const fs::path lib = WriteTemp(c.name, c.yaml);
+    const RunResult r =
+        RunCli({"plan", "raster", "--scene", scene, "--library", lib.string(), "-o", out.string()});
+    EXPECT_EQ(r.exit_code, 2) << Describe(r);
+    EXPECT_NE(r.err.find(lib.string() + c.expected), std::string::npos) << Describe(r);
+    EXPECT_FALSE(fs::exists(out));
+  }
+  // A good library plans (exit 0): the same reader accepts every documented key.
+  const fs::path good = WriteTemp(
+      "lib_good.yaml",
+      "blocks:\n  - {name: cool, at: every_stitches, every: 50, m: [110]}\n"
+      "  - {name: mark, at: row_start, m: [111]}\n  - {name: jump, at: before_jump, m: [112], "
+      "p: 3}\n");
+  const RunResult r =
+      RunCli({"plan", "raster", "--scene", scene, "--library", good.string(), "-o", out.string()});
+  EXPECT_EQ(r.exit_code, 0) << Describe(r);
+}
+
 TEST(CheckCommand, MissingFileIsBadInput) {
   const RunResult r = RunCli({"check", (TempDir() / "does_not_exist.nc").string()});
   EXPECT_EQ(r.exit_code, 2) << Describe(r);

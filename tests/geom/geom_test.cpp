@@ -124,6 +124,34 @@ TEST(Surface, PolynomialProjectionAndJacobian) {
   EXPECT_NEAR(j.col(1).dot(n), 0.0, 1e-12);
 }
 
+// Capabilities are asked of the surface, not read from Kind(): a height field has u = x,
+// v = y (Point(x, y) lies over (x, y)); a mesh's domain is only its bounding box.
+TEST(Surface, CapabilitiesMatchTheParametrisation) {
+  const Domain2 d{Eigen::Vector2d(-50, -40), Eigen::Vector2d(60, 30)};
+  Eigen::Matrix4d c = Eigen::Matrix4d::Zero();
+  c(1, 1) = 1e-3;
+  TriangleMesh tri;
+  tri.vertices = {{0, 0, 0}, {10, 0, 1}, {0, 10, 2}};
+  tri.triangles = {{0, 1, 2}};
+  std::vector<std::unique_ptr<Surface>> surfaces;
+  surfaces.push_back(MakePlane(100, 80));
+  surfaces.push_back(MakePolynomialHeightField(c, d));
+  surfaces.push_back(MakeMeshSurface(tri));
+  surfaces.push_back(MakeCylinder(500.0, true, 400.0, 600.0));
+  surfaces.push_back(MakeCylinder(500.0, false, 400.0, 600.0));
+  for (const auto& s : surfaces) {
+    SCOPED_TRACE(s->Kind());
+    const bool cylinder = s->Kind().rfind("cylinder", 0) == 0;
+    EXPECT_EQ(s->IsHeightField(), !cylinder);
+    EXPECT_EQ(s->CoversDomain(), s->Kind() != "mesh");
+    if (!s->IsHeightField()) continue;
+    const Eigen::Vector2d uv(3.0, 2.0);
+    EXPECT_TRUE(s->Point(uv).head<2>().isApprox(uv));
+  }
+  // A cylinder's v is arc length around it, not y.
+  EXPECT_FALSE(surfaces.back()->Point({3.0, 200.0}).head<2>().isApprox(Eigen::Vector2d(3, 200)));
+}
+
 TEST(SurfacePath, CircleLengthAndEqualArcSpacing) {
   auto plane = MakePlane(1000, 1000);
   Curve2 circle;

@@ -81,20 +81,48 @@ std::string Errors(const verify::Report& r) {
   return s;
 }
 
-TEST(Footprint, RowIntervalAndCrossingAgree) {
-  Footprint f;
-  f.centre = {10, 5};
-  f.axis_x = Eigen::Vector2d(1, 1).normalized();
-  f.axis_y = Eigen::Vector2d(-1, 1).normalized();
-  f.half_mm = {4, 1};
-  double a = 0, b = 0;
-  ASSERT_TRUE(f.RowInterval(5.0, a, b));
-  EXPECT_TRUE(f.Contains({0.5 * (a + b), 5.0}));
-  EXPECT_FALSE(f.Contains({a - 1e-6, 5.0}));
-  EXPECT_FALSE(f.Contains({b + 1e-6, 5.0}));
-  EXPECT_TRUE(f.Crosses({a - 5, 5.0}, {b + 5, 5.0}));
-  EXPECT_FALSE(f.Crosses({a - 5, 5.0}, {a - 1, 5.0}));
-  EXPECT_FALSE(f.RowInterval(40.0, a, b));
+// The plan is data and the writer follows it: the summary the writer counts equals what the
+// plan holds, the programme's first pass has no transit, every jump flies at least the flight
+// clearance, every pass starts off the footprints, and plan + write equals the one-call form.
+TEST(RasterPlanner, PlanIsDataTheWriterFollows) {
+  const auto s = Wing();
+  for (RasterStrategy strategy : {RasterStrategy::kJump, RasterStrategy::kSerpentine}) {
+    SCOPED_TRACE(std::string(ToString(strategy)));
+    RasterOptions o = SmallWindow(*s, strategy);
+    o.heads = 2;
+    DiagnosticSink sink;
+    const std::optional<RasterPlan> plan = PlanRaster(*s, o, sink);
+    ASSERT_TRUE(plan.has_value());
+    EXPECT_EQ(sink.ErrorCount(), 0u);
+    ASSERT_EQ(plan->sections.size(), 2u);
+    ASSERT_FALSE(plan->sections.front().passes.empty());
+    EXPECT_FALSE(plan->sections.front().passes.front().transit.has_value());
+    long stitches = 0, jumps = 0, rows = 0, regions = 0;
+    for (const RasterSection& section : plan->sections) {
+      regions += static_cast<long>(section.regions);
+      for (const RasterPass& pass : section.passes) {
+        EXPECT_GT(pass.stitches, 0);
+        stitches += pass.stitches;
+        rows += pass.row_start ? 1 : 0;
+        if (pass.transit && pass.transit->jump) {
+          ++jumps;
+          EXPECT_GE(pass.transit->lift_mm, plan->flight_clearance_mm);
+        }
+        const double u = pass.direction > 0 ? pass.piece.u_begin_mm : pass.piece.u_end_mm;
+        for (const scene::Footprint& f : plan->footprints) {
+          EXPECT_LE(f.Depth({u, pass.piece.v_mm}), 1e-9) << f.name;
+        }
+      }
+    }
+    std::ostringstream text;
+    const RasterSummary sum = WriteRasterProgram(*plan, *s, program::Dialect::Default(), text);
+    EXPECT_EQ(sum.stitches, stitches);
+    EXPECT_EQ(sum.jumps, jumps);
+    EXPECT_EQ(sum.rows, rows);
+    EXPECT_EQ(sum.bays, regions);
+    EXPECT_GT(jumps, 0);
+    EXPECT_EQ(text.str(), Plan(*s, o));
+  }
 }
 
 TEST(RasterPlanner, WingWindowVerifiesCleanWithBothStrategies) {

@@ -1,21 +1,22 @@
 // constraint.crossing (seed 001): no needle penetration inside a constraint's footprint, and
 // no move with the needles down (stitching on, head not retracted) across one. The footprint
-// is the constraint box grown by a margin; on a height-field surface (plane, polynomial,
-// mesh: u = x, v = y) the box is projected on the part's (x, y) plane, otherwise the grown
-// box itself is tested in 3D. Independent of the planner's own footprints (two routes).
+// is the raster planner's (scene/footprint.h): on a height-field surface the constraint's box
+// projected on the part's (x, y) plane and grown by a margin, otherwise the grown box in 3D.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
+#include "stitchsim/scene/footprint.h"
 #include "stitchsim/verify/rule.h"
 
 namespace stitchsim::verify {
 namespace {
 
+// A constraint's footprint: `outline` on a height-field surface, `box` otherwise.
 struct Box {
   std::string name;
-  Eigen::Isometry3d to_local = Eigen::Isometry3d::Identity();  // part frame -> box frame
-  Eigen::Vector3d half_mm = Eigen::Vector3d::Zero();           // margin included
+  scene::Footprint outline;
+  scene::GrownBox box;
 };
 
 class ConstraintCrossingRule final : public Rule {
@@ -27,23 +28,10 @@ class ConstraintCrossingRule final : public Rule {
              "mm") {
     margin_mm_ = ctx.scene->limits.Value(scene::LimitKey::kConstraintMarginMm);
     summary_.error_limit = 0.0;
-    const std::string kind = ctx.scene->surface ? ctx.scene->surface->Kind() : "";
-    planar_ = kind == "plane" || kind == "polynomial" || kind == "mesh";
+    planar_ = ctx.scene->surface && ctx.scene->surface->IsHeightField();
     for (const scene::Constraint& c : ctx.scene->constraints) {
-      Box b;
-      b.name = c.name;
-      if (c.shape == scene::Constraint::Shape::kMesh && !c.mesh.vertices.empty()) {
-        Eigen::AlignedBox3d box;
-        for (const auto& v : c.mesh.vertices) box.extend(v);
-        b.to_local = Eigen::Translation3d(-box.center());
-        b.half_mm = 0.5 * box.sizes();
-      } else {
-        b.to_local = c.pose_mm.inverse();
-        b.half_mm = 0.5 * c.size_mm;
-      }
-      b.half_mm.array() += margin_mm_;
-      if (planar_) b.half_mm.z() = 1e30;  // a projection: any height
-      boxes_.push_back(std::move(b));
+      boxes_.push_back(
+          {c.name, scene::ConstraintFootprint(c, margin_mm_), scene::ConstraintBox(c, margin_mm_)});
     }
   }
 
@@ -84,33 +72,13 @@ class ConstraintCrossingRule final : public Rule {
   }
 
  private:
-  // How far inside (>= 0) the grown box the point is; negative outside.
+  // How far inside (>= 0) the footprint the point is; negative outside.
   double PointDepth(const Box& b, const Eigen::Vector3d& p) const {
-    const Eigen::Vector3d q = b.to_local * p;
-    const int dims = planar_ ? 2 : 3;
-    double depth = 1e300;
-    for (int k = 0; k < dims; ++k) depth = std::min(depth, b.half_mm[k] - std::abs(q[k]));
-    return depth;
+    return planar_ ? b.outline.Depth(p.head<2>()) : b.box.Depth(p);
   }
-  // >= 0 if the segment meets the grown box (slab test), negative if not.
+  // >= 0 if the segment meets the footprint (slab test), negative if not.
   double SegmentDepth(const Box& b, const Eigen::Vector3d& a, const Eigen::Vector3d& e) const {
-    const Eigen::Vector3d la = b.to_local * a;
-    const Eigen::Vector3d d = b.to_local * e - la;
-    const int dims = planar_ ? 2 : 3;
-    double t0 = 0.0, t1 = 1.0;
-    for (int k = 0; k < dims; ++k) {
-      if (std::abs(d[k]) < 1e-12) {
-        if (std::abs(la[k]) > b.half_mm[k]) return -1.0;
-        continue;
-      }
-      double ta = (-b.half_mm[k] - la[k]) / d[k];
-      double tb = (b.half_mm[k] - la[k]) / d[k];
-      if (ta > tb) std::swap(ta, tb);
-      t0 = std::max(t0, ta);
-      t1 = std::min(t1, tb);
-      if (t0 > t1) return -1.0;
-    }
-    return std::max(0.0, PointDepth(b, a + (e - a) * (0.5 * (t0 + t1))));
+    return planar_ ? b.outline.SegmentDepth(a.head<2>(), e.head<2>()) : b.box.SegmentDepth(a, e);
   }
 
   double margin_mm_ = 1.0;

@@ -7,6 +7,7 @@
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/block.h"
 #include "stitchsim/program/dialect.h"
+#include "stitchsim/program/tool_pose.h"
 #include "stitchsim/program/writer.h"
 
 namespace stitchsim::planner::detail {
@@ -45,8 +46,7 @@ inline void WriteEnding(program::ProgramWriter& w, program::Block& b,
 /// result, so this only saves the work.
 class PoseWords {
  public:
-  explicit PoseWords(const program::Dialect& dialect)
-      : order_(geom::ParseEulerOrder(dialect.euler_order).value_or(geom::EulerOrder{})) {}
+  explicit PoseWords(const program::Dialect& dialect) : order_(program::EulerOrderOf(dialect)) {}
 
   void Set(program::Block& b, const Eigen::Vector3d& p, const Eigen::Matrix3d& r) {
     if (!have_ || r != rotation_) {

@@ -36,7 +36,15 @@ struct TriangleMesh {
 class Surface {
  public:
   virtual ~Surface() = default;
+  /// The surface type for messages ("plane", "mesh", ...); ask the capabilities below
+  /// instead of comparing it.
   virtual std::string Kind() const = 0;
+  /// True if u = x and v = y of the part frame and the surface is single-valued over
+  /// (x, y): a point's height above it is z minus Point(x, y).z().
+  virtual bool IsHeightField() const { return false; }
+  /// True if every (u, v) of Domain() lies on the surface. False for a mesh, whose domain is
+  /// the bounding box of its vertices (Point() extrapolates outside its triangles).
+  virtual bool CoversDomain() const { return true; }
   virtual Domain2 Domain() const = 0;
   /// Point on the surface at (u, v), part frame, mm.
   virtual Eigen::Vector3d Point(const Eigen::Vector2d& uv) const = 0;

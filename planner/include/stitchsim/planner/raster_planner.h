@@ -3,10 +3,10 @@
 // rows along u at a row spacing, stitches at a pitch, constraint footprints (stringers,
 // intercostals, spar caps) either jumped (retract, traverse, lower) or avoided by filling the
 // bays between them serpentine-wise; regions split among working heads; user code blocks at
-// events. The programme streams out as it is generated.
+// events. PlanRaster makes the plan (pure data: regions, head sections, passes and the
+// transits between them); WriteRasterProgram turns a plan into programme text, streaming.
 
 #include <Eigen/Geometry>
-#include <filesystem>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -14,7 +14,9 @@
 #include <vector>
 
 #include "stitchsim/common/diagnostics.h"
+#include "stitchsim/planner/code_library.h"
 #include "stitchsim/program/dialect.h"
+#include "stitchsim/scene/footprint.h"
 #include "stitchsim/scene/scene.h"
 
 namespace stitchsim::planner {
@@ -22,46 +24,6 @@ namespace stitchsim::planner {
 enum class RasterStrategy { kJump, kSerpentine };
 std::optional<RasterStrategy> ParseRasterStrategy(std::string_view text);
 std::string_view ToString(RasterStrategy strategy);
-
-/// A named block of user codes inserted at an event (e.g. needle cooling M110).
-struct UserCodeBlock {
-  enum class Event { kEveryStitches, kRowStart, kBeforeJump };
-  std::string name;
-  Event event = Event::kEveryStitches;
-  long every_stitches = 0;   ///< kEveryStitches: after every this many stitches (per programme)
-  std::vector<int> m_codes;  ///< user macros, inside the dialect's user range
-  std::optional<int> param;  ///< P word, if any
-};
-
-struct UserCodeLibrary {
-  std::vector<UserCodeBlock> blocks;
-};
-
-/// Parses a code library (YAML, docs/raster.md); diagnostics "library-..." with line:col.
-std::optional<UserCodeLibrary> ParseUserCodeLibrary(std::string_view yaml,
-                                                    const std::string& file_name,
-                                                    const program::Dialect& dialect,
-                                                    DiagnosticSink& sink);
-std::optional<UserCodeLibrary> LoadUserCodeLibrary(const std::filesystem::path& file,
-                                                   const program::Dialect& dialect,
-                                                   DiagnosticSink& sink);
-
-/// Where a constraint may not be stitched: its box projected on the part's (x, y) plane as an
-/// oriented rectangle (conservative for boxes tilted out of the plane), grown by a margin.
-struct Footprint {
-  std::string name;
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();   ///< part frame, mm
-  Eigen::Vector2d axis_x = Eigen::Vector2d::UnitX();  ///< unit
-  Eigen::Vector2d axis_y = Eigen::Vector2d::UnitY();  ///< unit, perpendicular to axis_x
-  Eigen::Vector2d half_mm = Eigen::Vector2d::Zero();  ///< half extents, margin included
-
-  bool Contains(const Eigen::Vector2d& p) const;
-  /// True if the segment a-b meets the rectangle (exact slab test).
-  bool Crosses(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
-  /// The x-range where the horizontal line y = `y` is inside; false if it misses.
-  bool RowInterval(double y, double& x_min, double& x_max) const;
-};
-std::vector<Footprint> MakeFootprints(const scene::Scene& scene, double margin_mm);
 
 struct RasterOptions {
   RasterStrategy strategy = RasterStrategy::kJump;
@@ -84,6 +46,66 @@ struct RasterOptions {
 /// them.
 RasterOptions RasterOptionsFor(const scene::Scene& scene);
 
+/// A piece of one row to stitch: the row's v and the u-range of clear surface (mm).
+struct RasterRowPiece {
+  long row = 0;  ///< global row index
+  double v_mm = 0.0;
+  double u_begin_mm = 0.0;
+  double u_end_mm = 0.0;
+};
+
+/// A region handed to one head: one row (jump) or one bay (serpentine).
+struct RasterRegion {
+  std::vector<RasterRowPiece> pieces;  ///< by row, then by u
+  long stitches = 0;                   ///< stitches of its pieces counted along +u
+};
+
+/// How the head gets from the last stitch of one pass to the first point of the next, the
+/// needles out. The turn comes first when the head turns by more than 90 deg.
+struct RasterTransit {
+  bool jump = false;          ///< retract, fly up the normals, across and down, lower
+  double lift_mm = 0.0;       ///< jump: flight height above both ends, along their normals
+  bool quarter_turn = false;  ///< a quarter turn about the tool z axis first (unwinds the wrist)
+  double turn_sign = 1.0;     ///< sense of that quarter turn
+};
+
+/// One row piece stitched in one direction.
+struct RasterPass {
+  RasterRowPiece piece;
+  double direction = 1.0;  ///< +1: from u_begin along +u; -1: from u_end along -u
+  long stitches = 0;       ///< whole stitches of one pitch (3D chord) from the start end, > 0
+  bool row_start = false;  ///< the first pass of its row (user row_start codes)
+  /// From the pass before; nullopt for the programme's first pass (a plain rapid to it).
+  std::optional<RasterTransit> transit;
+};
+
+/// The work of one working head, in order.
+struct RasterSection {
+  int head = 0;             ///< 1-based head number
+  std::size_t regions = 0;  ///< regions handed to it
+  std::vector<RasterPass> passes;
+};
+
+/// A raster plan: pure data, written as text by WriteRasterProgram.
+struct RasterPlan {
+  RasterStrategy strategy = RasterStrategy::kJump;
+  double pitch_mm = 0.0;
+  double row_spacing_mm = 0.0;
+  int heads = 1;
+  bool head_sections = false;  ///< each section opens with M60 P<head> (more than one head)
+  std::vector<scene::Footprint> footprints;  ///< grown by the margin and the head's keep-out
+  double flight_clearance_mm = 0.0;  ///< jumps fly this high at least: tallest constraint + lift
+  std::vector<RasterRegion> regions;
+  std::vector<RasterSection> sections;  ///< working heads that got regions, in head order
+  long stitches = 0;                    ///< the header's total: the regions' stitches
+  UserCodeLibrary library;
+};
+
+/// Plans the raster of `scene`. Diagnostics "plan-raster-..." for a bad option or surface;
+/// nullopt then.
+std::optional<RasterPlan> PlanRaster(const scene::Scene& scene, const RasterOptions& options,
+                                     DiagnosticSink& sink);
+
 /// What WriteRasterProgram wrote.
 struct RasterSummary {
   long stitches = 0;
@@ -99,9 +121,12 @@ struct RasterSummary {
   double TotalS() const { return stitching_s + traverse_s; }
 };
 
-/// Plans and writes the raster programme (mm, G90, one coupled G1 per stitch) through the
-/// dialect's writer, streaming: memory grows with the number of regions, not of stitches.
-/// Diagnostics "plan-raster-..." for a bad option or surface; nullopt then.
+/// Writes `plan` (made for `scene`) as a programme (mm, G90, one coupled G1 per stitch)
+/// through the dialect's writer, streaming: memory does not grow with the stitches.
+RasterSummary WriteRasterProgram(const RasterPlan& plan, const scene::Scene& scene,
+                                 const program::Dialect& dialect, std::ostream& out);
+
+/// PlanRaster, then WriteRasterProgram.
 std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene,
                                                 const RasterOptions& options,
                                                 const program::Dialect& dialect, std::ostream& out,

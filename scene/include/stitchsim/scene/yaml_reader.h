@@ -1,6 +1,8 @@
 #pragma once
-// Private helper: typed, validated reads from yaml-cpp nodes that report file:line:col
-// diagnostics instead of throwing.
+// Typed, validated reads from yaml-cpp nodes that report file:line:col diagnostics with a
+// caller's code prefix instead of throwing: unknown and duplicate keys, numbers, lengths with
+// units, referenced files. The scene, head-spec and limits loaders and the raster planner's
+// code library read their YAML through it.
 
 #include <yaml-cpp/yaml.h>
 
@@ -32,6 +34,8 @@ class YamlReader {
   /// Parses the whole file (a regular file within limits::kMaxYamlFileBytes); reports a
   /// missing or unreadable file, syntax errors and keys given twice in one mapping.
   std::optional<YAML::Node> LoadFile();
+  /// As LoadFile, from `text` already read (diagnostics still name File()).
+  std::optional<YAML::Node> LoadText(const std::string& text);
 
   /// The file `name` given at `node` (relative to this file's folder), when it exists, is a
   /// regular file and lies where `policy` allows; else reported ("-path-outside",
@@ -56,6 +60,8 @@ class YamlReader {
   /// `node` as Number reports them.
   std::optional<double> NumberText(const YAML::Node& node, std::string_view text,
                                    std::string_view what);
+  /// A whole number in [min, max]; "<prefix>-bad-number" or "<prefix>-out-of-range" else.
+  std::optional<long> Integer(const YAML::Node& node, std::string_view what, long min, long max);
   std::optional<std::string> String(const YAML::Node& node, std::string_view what);
   std::optional<bool> Bool(const YAML::Node& node, std::string_view what);
   /// A length: a number in `unit`, or a string "<number> mm|in|m". Result in millimetres.
@@ -81,3 +87,8 @@ class YamlReader {
 };
 
 }  // namespace stitchsim::scene::detail
+
+namespace stitchsim::scene {
+using detail::FileRefPolicy;
+using detail::YamlReader;
+}  // namespace stitchsim::scene

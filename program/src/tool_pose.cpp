@@ -1,0 +1,27 @@
+#include "stitchsim/program/tool_pose.h"
+
+namespace stitchsim::program {
+namespace {
+
+// Degrees to radians as a multiplication by pi/180 (not deg * pi / 180): the executor's
+// traces and reports were made with this rounding.
+constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
+
+}  // namespace
+
+geom::EulerOrder EulerOrderOf(const Dialect& dialect) {
+  return geom::ParseEulerOrder(dialect.euler_order).value_or(geom::EulerOrder{});
+}
+
+std::optional<Eigen::Isometry3d> ToolPoseOf(const MachineState& state, geom::EulerOrder order) {
+  for (Axis a : {Axis::kX, Axis::kY, Axis::kZ, Axis::kA, Axis::kB, Axis::kC}) {
+    if (!state[a]) return std::nullopt;
+  }
+  Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
+  tool.translation() = Eigen::Vector3d(*state[Axis::kX], *state[Axis::kY], *state[Axis::kZ]);
+  tool.linear() = geom::RotationFromEuler(
+      order, Eigen::Vector3d(*state[Axis::kA], *state[Axis::kB], *state[Axis::kC]) * kRadPerDeg);
+  return tool;
+}
+
+}  // namespace stitchsim::program
