@@ -189,7 +189,8 @@ int RunVerify(const VerifyArgs& a) {
     collision = sim::CollisionWorld::Create(*ls->scene, *ls->robot, world_diagnostics);
     if (PrintDiagnostics(world_diagnostics) || !collision) return kExitBadInput;
   }
-  verify::RuleContext ctx{ls->scene.get(), ls->robot.get(), &model, collision.get()};
+  const trace::CellDescription cell_description = sim::DescribeCell(*ls->robot, collision.get());
+  verify::RuleContext ctx{ls->scene.get(), &cell_description, &model};
   ctx.declared_stitches = id->stitches;
   sim::ExecuteOptions execute_options = sim::ExecuteOptionsFor(*ls->scene);
   execute_options.collision = collision.get();

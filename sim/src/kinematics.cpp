@@ -97,13 +97,6 @@ Eigen::Isometry3d ArmBasePose(const RobotModel& model, double rail_m) {
   return LinkPose(model, q, model.arm_mount_link()) * model.opw().mount_to_base;
 }
 
-std::string ToString(const ArmConfiguration& c) {
-  std::string out = c.shoulder == Shoulder::kFront ? "front" : "back";
-  out += c.elbow == Elbow::kUp ? "/up" : "/down";
-  out += c.wrist == Wrist::kNoFlip ? "/noflip" : "/flip";
-  return out;
-}
-
 ArmConfiguration ArmConfigurationOf(const RobotModel& model, const JointVector& q) {
   const OpwGeometry& g = model.opw();
   return detail::OpwConfiguration(g, detail::OpwFromUrdf(g, q.segment<kNumArmJoints>(kA1)));
@@ -124,24 +117,6 @@ ArmIkSolutions AllArmIkSolutions(const RobotModel& model,
     s.joints_rad = detail::UrdfFromOpw(g, s.joints_rad);
   }
   return out;
-}
-
-std::string_view ToString(IkStatus status) {
-  switch (status) {
-    case IkStatus::kOk:
-      return "ok";
-    case IkStatus::kUnreachable:
-      return "unreachable";
-    case IkStatus::kJointLimit:
-      return "joint-limit";
-    case IkStatus::kWristSingularity:
-      return "wrist-singularity";
-    case IkStatus::kShoulderSingularity:
-      return "shoulder-singularity";
-    case IkStatus::kConfigFlip:
-      return "config-flip";
-  }
-  return "unknown";
 }
 
 IkResult SolveIk(const RobotModel& model, const Eigen::Isometry3d& flange_target_world,

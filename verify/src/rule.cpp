@@ -20,7 +20,7 @@ std::optional<double> Rule::LimitOf(const RuleContext& ctx, const std::string& r
   return k->second;
 }
 
-void Rule::Observe(double value, int line, long stitch, const sim::TraceSample* sample) {
+void Rule::Observe(double value, int line, long stitch, const trace::TraceSample* sample) {
   if (!summary_.worst_value || value > *summary_.worst_value) {
     summary_.worst_value = value;
     summary_.worst_line = line;
@@ -36,7 +36,7 @@ bool Rule::Worse(FindingSeverity severity, double value, double limit, const Fin
 }
 
 void Rule::Record(FindingSeverity severity, double value, double limit, int line, long stitch,
-                  const std::string& subject, std::string message, const sim::TraceSample* sample) {
+                  const std::string& subject, std::string message, const trace::TraceSample* sample) {
   // One finding per line: find the line's finding, if it was reported already.
   std::size_t index = static_cast<std::size_t>(-1);
   bool seen = false;
@@ -115,7 +115,7 @@ void Rule::ObserveSubject(std::size_t index, double value, int line, long stitch
 }
 
 std::optional<FindingSeverity> Rule::Classify(double value, int line, long stitch,
-                                              const sim::TraceSample* sample) {
+                                              const trace::TraceSample* sample) {
   ++summary_.checked;
   const bool new_worst = !summary_.worst_value || value > *summary_.worst_value;
   Observe(value, line, stitch, nullptr);
@@ -132,7 +132,7 @@ std::optional<FindingSeverity> Rule::Classify(double value, int line, long stitc
 
 void Rule::RecordExceeded(FindingSeverity severity, double value, int line, long stitch,
                           const std::string& subject, const std::string& what,
-                          const sim::TraceSample* sample) {
+                          const trace::TraceSample* sample) {
   const double limit =
       severity == FindingSeverity::kError ? *summary_.error_limit : *summary_.warning_limit;
   char buf[256];
