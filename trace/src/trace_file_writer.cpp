@@ -108,7 +108,7 @@ void EncodeCollision(const SampleCollision& c, Encoder& e) {
 }  // namespace
 
 std::uint64_t Fnv1a64(std::string_view bytes) {
-  std::uint64_t h = 1469598103934665603ull;
+  std::uint64_t h = 14695981039346656037ull;  // the FNV-1a 64-bit offset basis
   for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
   return h;
 }
