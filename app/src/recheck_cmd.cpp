@@ -93,15 +93,7 @@ int RunRecheck(const RecheckArgs& a) {
     PrintError("trace-bad-file", error);
     return kExitBadInput;
   }
-  verify::Report report;
-  report.program_file = h.program_file;
-  report.scene_file = a.scene;
-  report.scene_name = ls->scene->name;
-  report.head = ls->scene->head.name;
-  report.lines = run.lines;
-  report.moves = run.moves;
-  report.stitch_length_mm = h.stitch_length_mm;
-  report.cycle_time_s = run.cycle_time_s;
+  verify::Report report = RunReport(h.program_file, a.scene, *ls->scene, h.stitch_length_mm, run);
   verifier.Finish(report);
   if (WriteReports(report, a.report_json, a.junit) != kExitOk) return kExitBadInput;
   return report.errors == 0 ? kExitOk : kExitFindings;
@@ -124,6 +116,21 @@ std::vector<trace::FileFingerprint> SceneFingerprints(const scene::Scene& scene)
     out.push_back({role, path->string(), bytes ? trace::Fnv1a64(*bytes) : 0});
   }
   return out;
+}
+
+verify::Report RunReport(const std::string& program_file, const std::string& scene_file,
+                         const scene::Scene& scene, double stitch_length_mm,
+                         const trace::TraceFileSummary& run) {
+  verify::Report report;
+  report.program_file = program_file;
+  report.scene_file = scene_file;
+  report.scene_name = scene.name;
+  report.head = scene.head.name;
+  report.lines = run.lines;
+  report.moves = run.moves;
+  report.stitch_length_mm = stitch_length_mm;
+  report.cycle_time_s = run.cycle_time_s;
+  return report;
 }
 
 int WriteReports(const verify::Report& report, const std::string& json, const std::string& junit) {

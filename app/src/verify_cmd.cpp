@@ -251,22 +251,15 @@ int RunVerify(const VerifyArgs& a) {
       sim::ExecuteProgram(cell, model, input, execute_options, diagnostics, progress);
   progress.Done();
   if (PrintDiagnostics(diagnostics) || !run.ok) return kExitBadInput;
+  const trace::TraceFileSummary summary{run.lines, run.moves, run.time_s};
   if (saved) {
-    if (std::string err = saved->Commit({run.lines, run.moves, run.time_s}); !err.empty()) {
+    if (std::string err = saved->Commit(summary); !err.empty()) {
       PrintError("io-write", "--save-trace: " + err);
       return kExitBadInput;
     }
   }
 
-  verify::Report report;
-  report.program_file = a.program;
-  report.scene_file = a.scene;
-  report.scene_name = ls->scene->name;
-  report.head = ls->scene->head.name;
-  report.lines = run.lines;
-  report.moves = run.moves;
-  report.stitch_length_mm = stitch_length;
-  report.cycle_time_s = run.time_s;
+  verify::Report report = RunReport(a.program, a.scene, *ls->scene, stitch_length, summary);
   verifier.Finish(report);
   if (WriteReports(report, a.report_json, a.junit) != kExitOk) return kExitBadInput;
   if (!a.snapshots.empty()) {
