@@ -97,7 +97,8 @@ int main(int argc, char** argv) {
         world = sim::CollisionWorld::Create(*scene, *robot, sink);
         if (!world) return 1;
       }
-      verify::RuleContext ctx{scene.get(), &*robot, &model, world.get()};
+      const trace::CellDescription cell_description = sim::DescribeCell(*robot, world.get());
+      verify::RuleContext ctx{scene.get(), &cell_description, &model};
       verify::Verifier verifier(ctx, false);
       std::ifstream in(file, std::ios::binary);
       sim::ExecuteOptions options = sim::ExecuteOptionsFor(*scene);

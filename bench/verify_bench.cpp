@@ -87,7 +87,8 @@ void BM_VerifyDecoupledRaster(benchmark::State& state) {
   const long rss_before = PeakRssKb();
   std::string verdict;
   for (auto _ : state) {
-    verify::RuleContext ctx{p.scene.get(), p.robot.get(), &model};
+    const trace::CellDescription cell_description = sim::DescribeCell(*p.robot, nullptr);
+    verify::RuleContext ctx{p.scene.get(), &cell_description, &model};
     verify::Verifier verifier(ctx, false);
     DiagnosticSink sink;
     std::ifstream in(p.program, std::ios::binary);

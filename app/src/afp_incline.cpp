@@ -75,7 +75,8 @@ planner::InclineVerdict Judge(const LoadedScene& ls, sim::CollisionWorld& world,
   const double stitch_length = id->stitch_length_mm.value_or(ls.scene->nominal_stitch_length_mm);
   const sim::CellSetup cell = sim::MakeCellSetup(*ls.robot, *ls.scene);
   const process::ProcessModel model = process::MakeProcessModel(*ls.scene, stitch_length);
-  verify::RuleContext ctx{ls.scene.get(), ls.robot.get(), &model, &world};
+  const trace::CellDescription cell_description = sim::DescribeCell(*ls.robot, &world);
+  verify::RuleContext ctx{ls.scene.get(), &cell_description, &model};
   sim::ExecuteOptions options = sim::ExecuteOptionsFor(*ls.scene);
   options.collision = &world;
   verify::Verifier verifier(ctx, false);

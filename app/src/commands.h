@@ -11,6 +11,8 @@
 
 #include "cli_common.h"
 #include "stitchsim/sim/kinematics.h"
+#include "stitchsim/trace/trace_file.h"
+#include "stitchsim/verify/report.h"
 
 namespace stitchsim::app {
 
@@ -19,6 +21,18 @@ void AddCheckCommand(CLI::App& app, int& exit_code);
 void AddPlanCommand(CLI::App& app, int& exit_code);
 void AddVerifyCommand(CLI::App& app, int& exit_code);
 void AddKinematicsCommands(CLI::App& app, int& exit_code);
+void AddRecheckCommand(CLI::App& app, int& exit_code);
+
+/// Fingerprints of the files a run on `scene` depends on (scene, head spec, cell and head
+/// models), for a saved trace: a recheck refuses a trace whose files changed.
+std::vector<trace::FileFingerprint> SceneFingerprints(const scene::Scene& scene);
+/// A report's header for a run of `program_file` on `scene` (read from `scene_file`).
+verify::Report RunReport(const std::string& program_file, const std::string& scene_file,
+                         const scene::Scene& scene, double stitch_length_mm,
+                         const trace::TraceFileSummary& run);
+/// Writes the JSON and JUnit reports (those asked for; whole or not at all, as a set) and
+/// prints the text report; kExitOk, or kExitBadInput (printed) when a file cannot be written.
+int WriteReports(const verify::Report& report, const std::string& json, const std::string& junit);
 
 /// A reachable pose for the robot to be drawn in (home when IK fails).
 struct StartPose {

@@ -15,6 +15,7 @@
 #include "stitchsim/program/dialect.h"
 #include "stitchsim/program/identity.h"
 #include "stitchsim/sim/executor.h"
+#include "stitchsim/trace/trace_file.h"
 #include "stitchsim/verify/verifier.h"
 
 namespace stitchsim::app {
@@ -27,6 +28,7 @@ struct VerifyArgs {
   std::string report_json;
   std::string junit;
   std::string snapshots;
+  std::string save_trace;
   bool no_collision = false;
   bool allow_mismatch = false;
 };
@@ -76,6 +78,45 @@ class ProgressSink : public sim::TraceSink {
   long lines_ = 0;
   long stitches_ = 0;
 };
+
+// Sends the trace to the verifier and, with --save-trace, to the trace file.
+class TeeSink : public trace::TraceSink {
+ public:
+  TeeSink(trace::TraceSink& first, trace::TraceSink* second) : first_(first), second_(second) {}
+  void OnLine(const trace::LineRecord& line) override {
+    first_.OnLine(line);
+    if (second_ != nullptr) second_->OnLine(line);
+  }
+  void OnSample(const trace::TraceSample& s) override {
+    first_.OnSample(s);
+    if (second_ != nullptr) second_->OnSample(s);
+  }
+
+ private:
+  trace::TraceSink& first_;
+  trace::TraceSink* second_;
+};
+
+// The --save-trace file, its header written: what was run and on what.
+std::unique_ptr<trace::TraceFileWriter> OpenTrace(const VerifyArgs& a, const LoadedScene& ls,
+                                                  const sim::CellSetup& cell,
+                                                  const trace::CellDescription& description,
+                                                  const program::ProgramIdentity& id,
+                                                  double stitch_length) {
+  trace::TraceFileHeader h;
+  h.program_file = a.program;
+  h.scene_name = ls.scene->name;
+  h.head = ls.scene->head.name;
+  h.stitch_length_mm = stitch_length;
+  h.declared_stitches = id.stitches;
+  h.ik_wrist_singularity_rad = cell.ik.wrist_singularity_rad;
+  h.cell = description;
+  h.fingerprints = SceneFingerprints(*ls.scene);
+  std::string error;
+  auto writer = trace::TraceFileWriter::Open(a.save_trace, h, error);
+  if (!writer) PrintError("io-write", "--save-trace: " + error);
+  return writer;
+}
 
 // Colours by verdict.
 constexpr std::array<float, 4> kClean = {0.1f, 0.85f, 0.2f, 1.0f};
@@ -157,7 +198,10 @@ int WriteCloseUp(const LoadedScene& ls, const sim::CellSetup& cell, const verify
 }
 
 int RunVerify(const VerifyArgs& a) {
-  if (!OutputsDistinct({{"--report", a.report_json}, {"--junit", a.junit}})) return kExitBadInput;
+  if (!OutputsDistinct(
+          {{"--report", a.report_json}, {"--junit", a.junit}, {"--save-trace", a.save_trace}})) {
+    return kExitBadInput;
+  }
   auto ls = LoadSceneAndRobot(a.scene);
   if (!ls) return kExitBadInput;
   const std::optional<program::Dialect> custom = DialectOption(a.dialect);
@@ -189,38 +233,35 @@ int RunVerify(const VerifyArgs& a) {
     collision = sim::CollisionWorld::Create(*ls->scene, *ls->robot, world_diagnostics);
     if (PrintDiagnostics(world_diagnostics) || !collision) return kExitBadInput;
   }
-  verify::RuleContext ctx{ls->scene.get(), ls->robot.get(), &model, collision.get()};
+  const trace::CellDescription cell_description = sim::DescribeCell(*ls->robot, collision.get());
+  verify::RuleContext ctx{ls->scene.get(), &cell_description, &model};
   ctx.declared_stitches = id->stitches;
   sim::ExecuteOptions execute_options = sim::ExecuteOptionsFor(*ls->scene);
   execute_options.collision = collision.get();
   execute_options.allow_head_mismatch = a.allow_mismatch;
   verify::Verifier verifier(ctx, !a.snapshots.empty());
-  ProgressSink progress(verifier, ::isatty(2) != 0);
+  std::unique_ptr<trace::TraceFileWriter> saved;
+  if (!a.save_trace.empty()) {
+    saved = OpenTrace(a, *ls, cell, cell_description, *id, stitch_length);
+    if (!saved) return kExitBadInput;
+  }
+  TeeSink tee(verifier, saved.get());
+  ProgressSink progress(tee, ::isatty(2) != 0);
   const sim::ExecutionSummary run =
       sim::ExecuteProgram(cell, model, input, execute_options, diagnostics, progress);
   progress.Done();
   if (PrintDiagnostics(diagnostics) || !run.ok) return kExitBadInput;
-
-  verify::Report report;
-  report.program_file = a.program;
-  report.scene_file = a.scene;
-  report.scene_name = ls->scene->name;
-  report.head = ls->scene->head.name;
-  report.lines = run.lines;
-  report.moves = run.moves;
-  report.stitch_length_mm = stitch_length;
-  report.cycle_time_s = run.time_s;
-  verifier.Finish(report);
-
-  // Reports are written whole or not at all, as a set.
-  std::vector<std::pair<std::filesystem::path, std::string>> reports;
-  if (!a.report_json.empty()) reports.emplace_back(a.report_json, verify::ReportToJson(report));
-  if (!a.junit.empty()) reports.emplace_back(a.junit, verify::ReportToJunit(report));
-  if (std::string err = WriteFilesAtomically(reports); !err.empty()) {
-    PrintError("io-write", err);
-    return kExitBadInput;
+  const trace::TraceFileSummary summary{run.lines, run.moves, run.time_s};
+  if (saved) {
+    if (std::string err = saved->Commit(summary); !err.empty()) {
+      PrintError("io-write", "--save-trace: " + err);
+      return kExitBadInput;
+    }
   }
-  std::cout << verify::ReportToText(report);
+
+  verify::Report report = RunReport(a.program, a.scene, *ls->scene, stitch_length, summary);
+  verifier.Finish(report);
+  if (WriteReports(report, a.report_json, a.junit) != kExitOk) return kExitBadInput;
   if (!a.snapshots.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(a.snapshots, ec);
@@ -255,6 +296,8 @@ void AddVerifyCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--junit", args->junit, "Write a JUnit XML report here");
   cmd->add_option("--dialect", args->dialect,
                   "Dialect YAML file (default: the built-in dialect, models/dialect/default.yaml)");
+  cmd->add_option("--save-trace", args->save_trace,
+                  "Write the trace the rules read here, to check again with `stitchsim recheck`");
   cmd->add_option("--snapshots", args->snapshots,
                   "Write overview.png and <rule>.png close-ups into this folder");
   AddScenePathFlag(*cmd);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "stitchsim/sim/collision.h"
+
 namespace stitchsim::sim {
 namespace {
 
@@ -73,6 +75,20 @@ Eigen::Isometry3d ToolPoseInPart(const CellSetup& cell, const JointVector& q) {
                            cell.flange_to_tool_m;
   tool.translation() *= 1000.0;
   return tool;
+}
+
+trace::CellDescription DescribeCell(const RobotModel& robot, const CollisionWorld* collision) {
+  trace::CellDescription d;
+  for (int j = 0; j < kNumJoints; ++j) {
+    d.joint_names[static_cast<std::size_t>(j)] =
+        std::string(kJointNames[static_cast<std::size_t>(j)]);
+  }
+  d.lower_limits = robot.lower_limits();
+  d.upper_limits = robot.upper_limits();
+  d.max_velocities = robot.max_velocities();
+  d.collision_checked = collision != nullptr;
+  if (collision != nullptr) d.bodies = collision->BodyNames();
+  return d;
 }
 
 }  // namespace stitchsim::sim

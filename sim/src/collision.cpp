@@ -231,6 +231,11 @@ class FclWorld final : public CollisionWorld {
   bool Build(const scene::Scene& scene, DiagnosticSink& sink);
   CollisionResult Check(const JointVector& q, const CollisionOptions& options) override;
   double MaxPointTravel(const JointVector& a, const JointVector& b) const override;
+  std::vector<std::string> BodyNames() const override {
+    std::vector<std::string> names;
+    for (const auto& b : bodies_) names.push_back(b.name);
+    return names;
+  }
 
  private:
   struct Candidate {

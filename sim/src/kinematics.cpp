@@ -97,13 +97,6 @@ Eigen::Isometry3d ArmBasePose(const RobotModel& model, double rail_m) {
   return LinkPose(model, q, model.arm_mount_link()) * model.opw().mount_to_base;
 }
 
-std::string ToString(const ArmConfiguration& c) {
-  std::string out = c.shoulder == Shoulder::kFront ? "front" : "back";
-  out += c.elbow == Elbow::kUp ? "/up" : "/down";
-  out += c.wrist == Wrist::kNoFlip ? "/noflip" : "/flip";
-  return out;
-}
-
 ArmConfiguration ArmConfigurationOf(const RobotModel& model, const JointVector& q) {
   const OpwGeometry& g = model.opw();
   return detail::OpwConfiguration(g, detail::OpwFromUrdf(g, q.segment<kNumArmJoints>(kA1)));
@@ -126,23 +119,63 @@ ArmIkSolutions AllArmIkSolutions(const RobotModel& model,
   return out;
 }
 
-std::string_view ToString(IkStatus status) {
-  switch (status) {
-    case IkStatus::kOk:
-      return "ok";
-    case IkStatus::kUnreachable:
-      return "unreachable";
-    case IkStatus::kJointLimit:
-      return "joint-limit";
-    case IkStatus::kWristSingularity:
-      return "wrist-singularity";
-    case IkStatus::kShoulderSingularity:
-      return "shoulder-singularity";
-    case IkStatus::kConfigFlip:
-      return "config-flip";
+namespace {
+
+// The solution SolveIk picks, and the nearest one ignoring limits (for the joint-limit report).
+struct SolutionChoice {
+  int best = -1;
+  ArmJointVector best_joints;
+  int nearest_invalid = -1;
+  ArmJointVector nearest_invalid_joints;
+};
+
+// Weighted distance of each solution, axis by axis at its nearest in-limit 2 pi equivalent.
+SolutionChoice ChooseSolution(const RobotModel& model, const ArmIkSolutions& solutions,
+                              const JointVector& reference, const IkOptions& options) {
+  const JointVector& lower = model.lower_limits();
+  const JointVector& upper = model.upper_limits();
+  const double tol = options.limit_tolerance;
+  SolutionChoice c;
+  double best_cost = std::numeric_limits<double>::infinity();
+  double nearest_invalid_cost = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < solutions.count; ++i) {
+    const ArmIkSolution& s = solutions.solution[static_cast<std::size_t>(i)];
+    ArmJointVector joints;
+    ArmJointVector unlimited;
+    bool valid = true;
+    double cost = 0.0;
+    double unlimited_cost = 0.0;
+    for (int j = 0; j < kNumArmJoints; ++j) {
+      const int m = kA1 + j;
+      const double scale = options.joint_weights(j) / model.max_velocities()(m);
+      const double inf = std::numeric_limits<double>::infinity();
+      unlimited(j) = *NearestEquivalentWithin(s.joints_rad(j), reference(m), -inf, inf);
+      unlimited_cost += std::pow(scale * (unlimited(j) - reference(m)), 2);
+      const std::optional<double> within =
+          NearestEquivalentWithin(s.joints_rad(j), reference(m), lower(m) - tol, upper(m) + tol);
+      if (!within) {
+        valid = false;
+        continue;
+      }
+      joints(j) = *within;
+      cost += std::pow(scale * (joints(j) - reference(m)), 2);
+    }
+    if (valid && cost < best_cost) {
+      c.best = i;
+      best_cost = cost;
+      c.best_joints = joints;
+    }
+    if (unlimited_cost < nearest_invalid_cost) {
+      c.nearest_invalid = i;
+      nearest_invalid_cost = unlimited_cost;
+      c.nearest_invalid_joints = unlimited;
+    }
   }
-  return "unknown";
+
+  return c;
 }
+
+}  // namespace
 
 IkResult SolveIk(const RobotModel& model, const Eigen::Isometry3d& flange_target_world,
                  double rail_m, const JointVector* previous, const IkOptions& options) {
@@ -175,47 +208,11 @@ IkResult SolveIk(const RobotModel& model, const Eigen::Isometry3d& flange_target
     return result;
   }
 
-  // Weighted distance of each solution, axis by axis at its nearest in-limit 2 pi equivalent.
-  int best = -1;
-  double best_cost = std::numeric_limits<double>::infinity();
-  ArmJointVector best_joints;
-  int nearest_invalid = -1;  // nearest solution ignoring limits, for the joint-limit report
-  double nearest_invalid_cost = std::numeric_limits<double>::infinity();
-  ArmJointVector nearest_invalid_joints;
-  for (int i = 0; i < solutions.count; ++i) {
-    const ArmIkSolution& s = solutions.solution[static_cast<std::size_t>(i)];
-    ArmJointVector joints;
-    ArmJointVector unlimited;
-    bool valid = true;
-    double cost = 0.0;
-    double unlimited_cost = 0.0;
-    for (int j = 0; j < kNumArmJoints; ++j) {
-      const int m = kA1 + j;
-      const double scale = options.joint_weights(j) / model.max_velocities()(m);
-      const double inf = std::numeric_limits<double>::infinity();
-      unlimited(j) = *NearestEquivalentWithin(s.joints_rad(j), reference(m), -inf, inf);
-      unlimited_cost += std::pow(scale * (unlimited(j) - reference(m)), 2);
-      const std::optional<double> within =
-          NearestEquivalentWithin(s.joints_rad(j), reference(m), lower(m) - tol, upper(m) + tol);
-      if (!within) {
-        valid = false;
-        continue;
-      }
-      joints(j) = *within;
-      cost += std::pow(scale * (joints(j) - reference(m)), 2);
-    }
-    if (valid && cost < best_cost) {
-      best = i;
-      best_cost = cost;
-      best_joints = joints;
-    }
-    if (unlimited_cost < nearest_invalid_cost) {
-      nearest_invalid = i;
-      nearest_invalid_cost = unlimited_cost;
-      nearest_invalid_joints = unlimited;
-    }
-  }
-
+  const SolutionChoice choice = ChooseSolution(model, solutions, reference, options);
+  const int best = choice.best;
+  const ArmJointVector& best_joints = choice.best_joints;
+  const int nearest_invalid = choice.nearest_invalid;
+  const ArmJointVector& nearest_invalid_joints = choice.nearest_invalid_joints;
   if (best < 0) {
     const ArmIkSolution& s = solutions.solution[static_cast<std::size_t>(nearest_invalid)];
     result.status = IkStatus::kJointLimit;

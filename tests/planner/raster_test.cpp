@@ -56,7 +56,8 @@ verify::Report VerifyText(const scene::Scene& s, const std::string& text, double
   // rows, while turning at a bay edge and while flying a jump.
   auto world = sim::CollisionWorld::Create(s, *robot, sink);
   EXPECT_NE(world, nullptr);
-  verify::RuleContext ctx{&s, &*robot, &model, world.get()};
+  const trace::CellDescription cell_description = sim::DescribeCell(*robot, world.get());
+  verify::RuleContext ctx{&s, &cell_description, &model};
   verify::Verifier verifier(ctx, false);
   std::istringstream in(text);
   sim::ExecuteOptions options = sim::ExecuteOptionsFor(s);

@@ -69,10 +69,12 @@ verify::Report Verify(const Loaded& l, const std::string& text, bool subdivide) 
   const CellSetup cell = MakeCellSetup(*l.robot, *l.scene);
   const process::ProcessModel model =
       process::MakeProcessModel(*l.scene, l.scene->nominal_stitch_length_mm);
-  verify::RuleContext ctx{l.scene.get(), &*l.robot, &model, l.world.get()};
+  const trace::CellDescription cell_description = DescribeCell(*l.robot, l.world.get());
+  verify::RuleContext ctx{l.scene.get(), &cell_description, &model};
   verify::Verifier verifier(ctx, false);
   ExecuteOptions options = ExecuteOptionsFor(*l.scene);
-  if (subdivide) options.collision = l.world.get();
+  options.collision = l.world.get();
+  options.collision_subdivide = subdivide;
   std::istringstream in(text);
   DiagnosticSink sink;
   const ExecutionSummary run = ExecuteProgram(cell, model, program::Dialect::Default(), in,

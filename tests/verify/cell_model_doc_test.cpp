@@ -202,7 +202,8 @@ TEST(CellModelDoc, ArcsEitherSideOfTheSwitchEndToEnd) {
       }
       const sim::CellSetup cell = sim::MakeCellSetup(*robot, *s);
       const process::ProcessModel model = process::MakeProcessModel(*s, 4.98);
-      const RuleContext ctx{s.get(), &*robot, &model};  // outlives the verifier
+      const trace::CellDescription cell_description = sim::DescribeCell(*robot, nullptr);
+      const RuleContext ctx{s.get(), &cell_description, &model};
       Verifier verifier(ctx, false);
       std::istringstream in(text.str());
       ASSERT_TRUE(sim::ExecuteProgram(cell, model, program::Dialect::Default(), in, "arc.nc",

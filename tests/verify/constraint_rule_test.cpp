@@ -59,7 +59,8 @@ const RuleSummary* Crossing(const Report& r) {
 Report Check(const Fixture& f, const std::string& text) {
   const sim::CellSetup cell = sim::MakeCellSetup(*f.robot, *f.scene);
   const process::ProcessModel model = process::MakeProcessModel(*f.scene, f.options.pitch_mm);
-  RuleContext ctx{f.scene.get(), &*f.robot, &model};
+  const trace::CellDescription cell_description = sim::DescribeCell(*f.robot, nullptr);
+  RuleContext ctx{f.scene.get(), &cell_description, &model};
   Verifier verifier(ctx, false);
   DiagnosticSink sink;
   std::istringstream in(text);

@@ -35,7 +35,8 @@ const RuleSummary* RuleOf(const Report& r, const std::string& id) {
 Report Verify(const Loaded& l, const std::string& text, double stitch_length_mm) {
   const sim::CellSetup cell = sim::MakeCellSetup(*l.robot, *l.scene);
   const process::ProcessModel model = process::MakeProcessModel(*l.scene, stitch_length_mm);
-  RuleContext ctx{l.scene.get(), l.robot.get(), &model};
+  const trace::CellDescription cell_description = sim::DescribeCell(*l.robot, nullptr);
+  RuleContext ctx{l.scene.get(), &cell_description, &model};
   Verifier verifier(ctx, false);
   DiagnosticSink sink;
   std::istringstream in(text);

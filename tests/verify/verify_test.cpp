@@ -40,7 +40,8 @@ struct Outcome {
 Outcome Verify(const Loaded& l, const std::string& text, double stitch_length_mm) {
   const sim::CellSetup cell = sim::MakeCellSetup(*l.robot, *l.scene);
   const process::ProcessModel model = process::MakeProcessModel(*l.scene, stitch_length_mm);
-  RuleContext ctx{l.scene.get(), l.robot.get(), &model};
+  const trace::CellDescription cell_description = sim::DescribeCell(*l.robot, nullptr);
+  RuleContext ctx{l.scene.get(), &cell_description, &model};
   Verifier verifier(ctx, true);
   DiagnosticSink sink;
   std::istringstream in(text);
@@ -300,7 +301,8 @@ TEST(Verify, CoupledArcOnATwistedPlatePasses) {
 TEST(Verify, SideForceRuleOnAHandMadeTrace) {
   const Loaded l = Load("flat_straight");
   const process::ProcessModel model = process::MakeProcessModel(*l.scene, 5.0);
-  RuleContext ctx{l.scene.get(), l.robot.get(), &model};
+  const trace::CellDescription cell_description = sim::DescribeCell(*l.robot, nullptr);
+  RuleContext ctx{l.scene.get(), &cell_description, &model};
   Verifier v(ctx, false);
   const double yaw = 0.01;  // rad during the window
   for (int i = 0; i <= 10; ++i) {

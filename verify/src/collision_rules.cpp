@@ -1,6 +1,7 @@
-// Collision rules: the scene's FCL world queried at every trace sample that carries joints
-// (line ends, the coarse IK grid and, when the executor was given the world, the extra samples
-// that keep consecutive checks closer than the measured clearance).
+// Collision rules: what the executor's collision world measured at every trace sample with
+// usable joints (line ends, the coarse IK grid and the extra samples that keep consecutive
+// checks closer than the measured clearance), read from the trace. Bodies are indices into
+// the trace's body table (CellDescription::bodies).
 #include <cstdio>
 #include <set>
 #include <utility>
@@ -17,9 +18,12 @@ std::string PointText(const Eigen::Vector3d& p_m) {
   return buf;
 }
 
-bool Checkable(const sim::TraceSample& s) {
-  return s.has_joints && s.ik_status != sim::IkStatus::kUnreachable &&
-         s.ik_status != sim::IkStatus::kJointLimit;
+// A body's name from the trace's table ("" for none).
+const std::string& BodyName(const trace::CellDescription& cell, int index) {
+  static const std::string kNone;
+  return index >= 0 && static_cast<std::size_t>(index) < cell.bodies.size()
+             ? cell.bodies[static_cast<std::size_t>(index)]
+             : kNone;
 }
 
 // One finding per line (Rule::Record merges the body pairs of a line: the deepest stays); a
@@ -27,18 +31,16 @@ bool Checkable(const sim::TraceSample& s) {
 class ContactRule final : public Rule {
  public:
   ContactRule(const RuleContext& ctx, std::string id, std::string description,
-              sim::ContactClass kind)
-      : Rule(std::move(id), std::move(description), "mm"), world_(ctx.collision), kind_(kind) {
+              trace::ContactClass kind)
+      : Rule(std::move(id), std::move(description), "mm"), cell_(*ctx.cell), kind_(kind) {
     summary_.error_limit = 0.0;
   }
-  void OnSample(const sim::TraceSample& s) override {
-    if (!Checkable(s)) return;
-    sim::CollisionOptions options;
-    options.compute_clearance = true;  // shares the cached query with collision.clearance
-    const sim::CollisionResult r = world_->Check(s.joints, options);
+  void OnSample(const trace::TraceSample& s) override {
+    if (!s.collision.checked) return;
+    const trace::SampleCollision& r = s.collision;
     Counted();
     if (!r.error.empty()) {
-      if (kind_ == sim::ContactClass::kRobotCell) {
+      if (kind_ == trace::ContactClass::kRobotCell) {
         Record(FindingSeverity::kError, 0.0, 0.0, s.source_line, s.stitch, "fcl",
                "collision query failed: " + r.error, &s);
       }
@@ -48,15 +50,17 @@ class ContactRule final : public Rule {
       line_ = s.source_line;
       seen_.clear();
     }
-    for (const sim::Contact& c : r.contacts) {
+    for (const trace::Contact& c : r.contacts) {
       if (c.kind != kind_) continue;
       const double depth_mm = c.depth_m * 1000.0;
       Observe(depth_mm, s.source_line, s.stitch, &s);
-      const std::string subject = c.body_a + "|" + c.body_b;
+      const std::string& a = BodyName(cell_, c.body_a);
+      const std::string& b = BodyName(cell_, c.body_b);
+      const std::string subject = a + "|" + b;
       if (!seen_.insert(subject).second) continue;
       Record(
           FindingSeverity::kError, depth_mm, 0.0, s.source_line, s.stitch, subject,
-          c.body_a + " hits " + c.body_b + " at " + PointText(c.point_world_m) +
+          a + " hits " + b + " at " + PointText(c.point_world_m) +
               (c.depth_measured ? " (world), depth " + std::to_string(depth_mm).substr(0, 5) + " mm"
                                 : std::string(" (world), depth not measured (mesh)")),
           &s);
@@ -64,8 +68,8 @@ class ContactRule final : public Rule {
   }
 
  private:
-  sim::CollisionWorld* world_;
-  sim::ContactClass kind_;
+  const trace::CellDescription& cell_;
+  trace::ContactClass kind_;
   int line_ = -1;
   std::set<std::string> seen_;
 };
@@ -77,13 +81,12 @@ class ClearanceRule final : public Rule {
   explicit ClearanceRule(const RuleContext& ctx)
       : Rule("collision.clearance",
              "smallest distance between bodies that must not touch, under the margin (mm)", "mm"),
-        world_(ctx.collision) {
+        cell_(*ctx.cell) {
     summary_.warning_limit = ctx.scene->limits.Value(scene::LimitKey::kClearanceWarningMm);
   }
-  void OnSample(const sim::TraceSample& s) override {
-    if (!Checkable(s)) return;
-    sim::CollisionOptions options;
-    const sim::CollisionResult r = world_->Check(s.joints, options);
+  void OnSample(const trace::TraceSample& s) override {
+    if (!s.collision.checked) return;
+    const trace::SampleCollision& r = s.collision;
     Counted();
     if (!r.error.empty() || !r.contacts.empty()) return;  // the contact rules report those
     const double mm = r.min_clearance_m * 1000.0;
@@ -94,22 +97,28 @@ class ClearanceRule final : public Rule {
     }
     if (mm >= *summary_.warning_limit) return;
     if (s.source_line == line_ && mm >= line_worst_) return;
+    const std::string pair = PairText(r);
     if (s.source_line != line_) {
       line_ = s.source_line;
-      Record(FindingSeverity::kWarning, mm, *summary_.warning_limit, s.source_line, s.stitch,
-             r.min_clearance_pair,
-             r.min_clearance_pair + " only " + std::to_string(mm).substr(0, 5) + " mm apart", &s);
+      Record(FindingSeverity::kWarning, mm, *summary_.warning_limit, s.source_line, s.stitch, pair,
+             pair + " only " + std::to_string(mm).substr(0, 5) + " mm apart", &s);
     } else if (!summary_.findings.empty() && summary_.findings.back().line == line_) {
       auto& f = summary_.findings.back();
       f.value = mm;
-      f.subject = r.min_clearance_pair;
-      f.message = r.min_clearance_pair + " only " + std::to_string(mm).substr(0, 5) + " mm apart";
+      f.subject = pair;
+      f.message = pair + " only " + std::to_string(mm).substr(0, 5) + " mm apart";
     }
     line_worst_ = mm;
   }
 
  private:
-  sim::CollisionWorld* world_;
+  // "a|b" of the nearest pair ("" when nothing is within the world's cutoff).
+  std::string PairText(const trace::SampleCollision& r) const {
+    if (r.clearance_body_a < 0) return "";
+    return BodyName(cell_, r.clearance_body_a) + "|" + BodyName(cell_, r.clearance_body_b);
+  }
+
+  const trace::CellDescription& cell_;
   int line_ = -1;
   double line_worst_ = 0.0;
 };
@@ -120,14 +129,14 @@ std::unique_ptr<Rule> MakeCollisionHeadMoldRule(const RuleContext& ctx) {
   return std::make_unique<ContactRule>(ctx, "collision.head_mold",
                                        "head or arm interfering with the mold, preform or a "
                                        "constraint (penetration depth, mm)",
-                                       sim::ContactClass::kHeadPart);
+                                       trace::ContactClass::kHeadPart);
 }
 
 std::unique_ptr<Rule> MakeCollisionRobotCellRule(const RuleContext& ctx) {
   return std::make_unique<ContactRule>(ctx, "collision.robot_cell",
                                        "arm, carriage or head interfering with the rail, rotator, "
                                        "table, floor or another link (penetration depth, mm)",
-                                       sim::ContactClass::kRobotCell);
+                                       trace::ContactClass::kRobotCell);
 }
 
 std::unique_ptr<Rule> MakeCollisionClearanceRule(const RuleContext& ctx) {

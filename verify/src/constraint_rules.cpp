@@ -35,7 +35,7 @@ class ConstraintCrossingRule final : public Rule {
     }
   }
 
-  void OnLine(const sim::LineRecord& l) override {
+  void OnLine(const trace::LineRecord& l) override {
     if (!l.stitching || l.head_retracted) return;
     Counted();
     for (const Box& b : boxes_) {

@@ -16,9 +16,9 @@ class StitchCountRule final : public Rule {
         declared_(*ctx.declared_stitches) {
     summary_.error_limit = static_cast<double>(declared_);
   }
-  void OnLine(const sim::LineRecord& line) override { last_line_ = line.source_line; }
-  void OnSample(const sim::TraceSample& s) override {
-    if (s.event == sim::SampleEvent::kNeedleEntry) ++made_;
+  void OnLine(const trace::LineRecord& line) override { last_line_ = line.source_line; }
+  void OnSample(const trace::TraceSample& s) override {
+    if (s.event == trace::SampleEvent::kNeedleEntry) ++made_;
   }
   void Finish(const RuleContext&) override {
     Counted();

@@ -11,7 +11,7 @@ Rule::Rule(std::string id, std::string description, std::string unit) {
   summary_.unit = std::move(unit);
 }
 
-void Rule::Observe(double value, int line, long stitch, const sim::TraceSample* sample) {
+void Rule::Observe(double value, int line, long stitch, const trace::TraceSample* sample) {
   if (!summary_.worst_value || value > *summary_.worst_value) {
     summary_.worst_value = value;
     summary_.worst_line = line;
@@ -27,7 +27,7 @@ bool Rule::Worse(FindingSeverity severity, double value, double limit, const Fin
 }
 
 void Rule::Record(FindingSeverity severity, double value, double limit, int line, long stitch,
-                  const std::string& subject, std::string message, const sim::TraceSample* sample) {
+                  const std::string& subject, std::string message, const trace::TraceSample* sample) {
   // One finding per line: find the line's finding, if it was reported already.
   std::size_t index = static_cast<std::size_t>(-1);
   bool seen = false;
@@ -106,7 +106,7 @@ void Rule::ObserveSubject(std::size_t index, double value, int line, long stitch
 }
 
 std::optional<FindingSeverity> Rule::Classify(double value, int line, long stitch,
-                                              const sim::TraceSample* sample) {
+                                              const trace::TraceSample* sample) {
   ++summary_.checked;
   const bool new_worst = !summary_.worst_value || value > *summary_.worst_value;
   Observe(value, line, stitch, nullptr);
@@ -123,7 +123,7 @@ std::optional<FindingSeverity> Rule::Classify(double value, int line, long stitc
 
 void Rule::RecordExceeded(FindingSeverity severity, double value, int line, long stitch,
                           const std::string& subject, const std::string& what,
-                          const sim::TraceSample* sample) {
+                          const trace::TraceSample* sample) {
   const double limit =
       severity == FindingSeverity::kError ? *summary_.error_limit : *summary_.warning_limit;
   char buf[256];

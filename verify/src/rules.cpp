@@ -134,7 +134,7 @@ class StitchLengthRule final : public Rule {
   // A seam ends where stitching is switched off (M11) or the head retracts (M20): the
   // dialect has no thread-cut code. A move with the needles out inside a seam (stitching on,
   // head down) does not end it: it lengthens the stitch the next penetration closes.
-  void OnLine(const sim::LineRecord& l) override {
+  void OnLine(const trace::LineRecord& l) override {
     if (!l.stitching || l.head_retracted) previous_.reset();
   }
   void OnPenetration(const PenetrationRecord& p) override {
@@ -248,9 +248,9 @@ class NormalityRule final : public Rule {
 
 class IkStatusRule : public Rule {
  public:
-  IkStatusRule(std::string id, std::string description, std::string unit, sim::IkStatus status)
+  IkStatusRule(std::string id, std::string description, std::string unit, trace::IkStatus status)
       : Rule(std::move(id), std::move(description), std::move(unit)), status_(status) {}
-  void OnSample(const sim::TraceSample& s) override {
+  void OnSample(const trace::TraceSample& s) override {
     if (!s.has_joints) return;
     Counted();
     if (s.ik_status != status_) return;
@@ -264,17 +264,17 @@ class IkStatusRule : public Rule {
   }
 
  protected:
-  virtual double Value(const sim::TraceSample&) const { return 1.0; }
+  virtual double Value(const trace::TraceSample&) const { return 1.0; }
   virtual double Limit() const { return 0.0; }
-  virtual std::string Subject(const sim::TraceSample&) const { return "arm"; }
-  virtual std::string Message(const sim::TraceSample& s) const = 0;
+  virtual std::string Subject(const trace::TraceSample&) const { return "arm"; }
+  virtual std::string Message(const trace::TraceSample& s) const = 0;
 
  private:
-  sim::IkStatus status_;
+  trace::IkStatus status_;
   int last_line_ = -1;
 };
 
-std::string PoseText(const sim::TraceSample& s) {
+std::string PoseText(const trace::TraceSample& s) {
   const Eigen::Vector3d p = s.tool_part.translation();
   return Fmt("tool point (%.2f, %.2f, %.2f) mm", p.x(), p.y(), p.z());
 }
@@ -283,10 +283,10 @@ class ReachRule final : public IkStatusRule {
  public:
   ReachRule()
       : IkStatusRule("kin.reach", "tool poses the arm cannot reach from the rail", "",
-                     sim::IkStatus::kUnreachable) {}
-  std::string Message(const sim::TraceSample& s) const override {
+                     trace::IkStatus::kUnreachable) {}
+  std::string Message(const trace::TraceSample& s) const override {
     return PoseText(s) + " is out of the arm's reach (rail at " +
-           Fmt("%.0f mm)", s.joints[sim::kRailX] * 1000.0);
+           Fmt("%.0f mm)", s.joints[trace::kRailX] * 1000.0);
   }
 };
 
@@ -294,27 +294,26 @@ class JointLimitRule final : public IkStatusRule {
  public:
   explicit JointLimitRule(const RuleContext& ctx)
       : IkStatusRule("kin.joint_limit", "joints beyond their URDF limits (deg, rail mm)", "deg",
-                     sim::IkStatus::kJointLimit),
-        robot_(ctx.robot) {}
-  double Value(const sim::TraceSample& s) const override { return Excess(s).first; }
-  std::string Subject(const sim::TraceSample& s) const override {
-    return std::string(sim::kJointNames[static_cast<std::size_t>(Excess(s).second)]);
+                     trace::IkStatus::kJointLimit),
+        cell_(ctx.cell) {}
+  double Value(const trace::TraceSample& s) const override { return Excess(s).first; }
+  std::string Subject(const trace::TraceSample& s) const override {
+    return cell_->joint_names[static_cast<std::size_t>(Excess(s).second)];
   }
-  std::string Message(const sim::TraceSample& s) const override {
+  std::string Message(const trace::TraceSample& s) const override {
     const auto [v, j] = Excess(s);
-    return PoseText(s) + " needs joint " +
-           std::string(sim::kJointNames[static_cast<std::size_t>(j)]) + " " + Fmt("%.3g", v) +
-           (j == sim::kRailX ? " mm" : " deg") + " beyond its limit";
+    return PoseText(s) + " needs joint " + cell_->joint_names[static_cast<std::size_t>(j)] + " " +
+           Fmt("%.3g", v) + (j == trace::kRailX ? " mm" : " deg") + " beyond its limit";
   }
 
  private:
-  std::pair<double, int> Excess(const sim::TraceSample& s) const {
+  std::pair<double, int> Excess(const trace::TraceSample& s) const {
     double worst = 0.0;
-    int joint = sim::kA1;
-    for (int j = 0; j < sim::kNumJoints; ++j) {
-      const double lo = robot_->lower_limits()[j], hi = robot_->upper_limits()[j];
+    int joint = trace::kA1;
+    for (int j = 0; j < trace::kNumJoints; ++j) {
+      const double lo = cell_->lower_limits[j], hi = cell_->upper_limits[j];
       double e = std::max(lo - s.joints[j], s.joints[j] - hi);
-      e *= j == sim::kRailX ? 1000.0 : kRadToDeg;
+      e *= j == trace::kRailX ? 1000.0 : kRadToDeg;
       if (e > worst) {
         worst = e;
         joint = j;
@@ -322,30 +321,30 @@ class JointLimitRule final : public IkStatusRule {
     }
     return {worst, joint};
   }
-  const sim::RobotModel* robot_;
+  const trace::CellDescription* cell_;
 };
 
 class SingularityRule final : public IkStatusRule {
  public:
   explicit SingularityRule(const RuleContext& ctx)
       : IkStatusRule("kin.singularity", "wrist (a5 near 0) or shoulder singular poses", "deg",
-                     sim::IkStatus::kWristSingularity),
+                     trace::IkStatus::kWristSingularity),
         a5_min_deg_(ctx.scene->limits.Value(LimitKey::kSingularityA5MinDeg)) {
     summary_.error_limit = a5_min_deg_;
   }
-  void OnSample(const sim::TraceSample& s) override {
-    if (s.has_joints && s.ik_status == sim::IkStatus::kShoulderSingularity) {
+  void OnSample(const trace::TraceSample& s) override {
+    if (s.has_joints && s.ik_status == trace::IkStatus::kShoulderSingularity) {
       Record(FindingSeverity::kError, 0.0, 0.0, s.source_line, s.stitch, "shoulder",
              PoseText(s) + " puts the wrist centre on the a1 axis (shoulder singularity)", &s);
     }
     IkStatusRule::OnSample(s);
   }
-  double Value(const sim::TraceSample& s) const override {
-    return std::abs(s.joints[sim::kA5]) * kRadToDeg;
+  double Value(const trace::TraceSample& s) const override {
+    return std::abs(s.joints[trace::kA5]) * kRadToDeg;
   }
   double Limit() const override { return a5_min_deg_; }
-  std::string Subject(const sim::TraceSample&) const override { return "a5"; }
-  std::string Message(const sim::TraceSample& s) const override {
+  std::string Subject(const trace::TraceSample&) const override { return "a5"; }
+  std::string Message(const trace::TraceSample& s) const override {
     return PoseText(s) + Fmt(" puts a5 at %.3g deg, inside the %.3g deg wrist singularity band",
                              Value(s), a5_min_deg_);
   }
@@ -359,10 +358,10 @@ class ConfigFlipRule final : public IkStatusRule {
   ConfigFlipRule()
       : IkStatusRule("kin.config_flip",
                      "arm configuration (shoulder/elbow/wrist) changes between consecutive poses",
-                     "", sim::IkStatus::kConfigFlip) {}
-  std::string Message(const sim::TraceSample& s) const override {
+                     "", trace::IkStatus::kConfigFlip) {}
+  std::string Message(const trace::TraceSample& s) const override {
     return PoseText(s) + " is reachable only by flipping the arm configuration to " +
-           sim::ToString(s.configuration);
+           trace::ToString(s.configuration);
   }
 };
 
@@ -370,28 +369,26 @@ class JointSpeedRule final : public Rule {
  public:
   explicit JointSpeedRule(const RuleContext& ctx)
       : Rule("kin.joint_speed", "joint speed at the programmed feed against the URDF maximum", "%"),
-        robot_(ctx.robot) {
+        cell_(ctx.cell) {
     summary_.error_limit = 100.0 * ctx.scene->limits.Value(LimitKey::kJointSpeedMaxFraction);
     summary_.warning_limit = ctx.scene->limits.Get(LimitKey::kJointSpeedWarningPct);
   }
-  void OnSample(const sim::TraceSample& s) override {
+  void OnSample(const trace::TraceSample& s) override {
     if (!s.has_joints) return;
-    const bool usable =
-        s.ik_status != sim::IkStatus::kUnreachable && s.ik_status != sim::IkStatus::kJointLimit;
+    const bool usable = trace::IkUsable(s.ik_status);
     if (have_ && usable) {
       const double dt = s.time_s - time_;
       if (dt > 1e-9) {
         double worst = 0.0;
         int joint = 0;
-        for (int j = 0; j < sim::kNumJoints; ++j) {
-          const double pct =
-              std::abs(s.joints[j] - q_[j]) / dt / robot_->max_velocities()[j] * 100.0;
+        for (int j = 0; j < trace::kNumJoints; ++j) {
+          const double pct = std::abs(s.joints[j] - q_[j]) / dt / cell_->max_velocities[j] * 100.0;
           if (pct > worst) {
             worst = pct;
             joint = j;
           }
         }
-        const std::string name(sim::kJointNames[static_cast<std::size_t>(joint)]);
+        const std::string& name = cell_->joint_names[static_cast<std::size_t>(joint)];
         CheckUpper(
             worst, s.source_line, s.stitch, name,
             [&] { return "joint " + name + " speed (of its maximum)"; }, &s);
@@ -405,8 +402,8 @@ class JointSpeedRule final : public Rule {
   }
 
  private:
-  const sim::RobotModel* robot_;
-  sim::JointVector q_ = sim::JointVector::Zero();
+  const trace::CellDescription* cell_;
+  trace::JointVector q_ = trace::JointVector::Zero();
   double time_ = 0.0;
   bool have_ = false;
 };
@@ -428,7 +425,7 @@ class SyncRule final : public Rule {
   // Each line's value is its largest inconsistency of the checks that apply to it, in mm:
   // V going back; |dU - dV| where U advances (AFP has no U); V against the tool travel where
   // V or U advances or the line moves inside a seam (beyond the chord allowance).
-  void OnLine(const sim::LineRecord& l) override {
+  void OnLine(const trace::LineRecord& l) override {
     Counted();
     const double tol = *summary_.error_limit;
     const double du = l.drive_to_mm - l.drive_from_mm;
@@ -471,8 +468,8 @@ class SyncRule final : public Rule {
 class EmptyProgramRule final : public Rule {
  public:
   EmptyProgramRule() : Rule("program.empty", "a programme that makes no stitch never passes", "") {}
-  void OnSample(const sim::TraceSample& s) override {
-    if (s.event == sim::SampleEvent::kNeedleEntry) ++stitches_;
+  void OnSample(const trace::TraceSample& s) override {
+    if (s.event == trace::SampleEvent::kNeedleEntry) ++stitches_;
   }
   void Finish(const RuleContext&) override {
     Counted();
@@ -519,15 +516,15 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   if (stitching) rules.push_back(std::make_unique<EmptyProgramRule>());
   if (stitching && ctx.declared_stitches) rules.push_back(MakeStitchCountRule(ctx));
   rules.push_back(MakeLineSamplingRule());
-  if (ctx.collision != nullptr) rules.push_back(MakeCollisionHeadMoldRule(ctx));
-  if (ctx.collision != nullptr) rules.push_back(MakeCollisionRobotCellRule(ctx));
-  if (ctx.collision != nullptr) rules.push_back(MakeCollisionClearanceRule(ctx));
+  if (ctx.cell->collision_checked) rules.push_back(MakeCollisionHeadMoldRule(ctx));
+  if (ctx.cell->collision_checked) rules.push_back(MakeCollisionRobotCellRule(ctx));
+  if (ctx.cell->collision_checked) rules.push_back(MakeCollisionClearanceRule(ctx));
   if (!ctx.scene->constraints.empty()) rules.push_back(MakeConstraintCrossingRule(ctx));
   return rules;
 }
 
 std::vector<SkippedRule> SkippedRules(const RuleContext& ctx) {
-  if (ctx.collision != nullptr) return {};
+  if (ctx.cell->collision_checked) return {};
   const std::string reason = "--no-collision";
   return {{"collision.head_mold", reason},
           {"collision.robot_cell", reason},

@@ -18,7 +18,7 @@ class LineSamplingRule final : public Rule {
              "samples") {
     summary_.error_limit = limits::kMaxSamplesPerLine;
   }
-  void OnLine(const sim::LineRecord& l) override {
+  void OnLine(const trace::LineRecord& l) override {
     Counted();
     Observe(l.samples_needed, l.source_line, 0, nullptr);
     if (!l.over_sample_limit) return;

@@ -5,7 +5,11 @@
 namespace stitchsim::verify {
 
 Verifier::Verifier(const RuleContext& ctx, bool keep_stitch_marks)
-    : ctx_(ctx), rules_(MakeRules(ctx)), window_(*ctx.process), keep_marks_(keep_stitch_marks) {}
+    : ctx_(ctx),
+      // From the verifier's copy: rules keep references to it (never to the caller's `ctx`).
+      rules_(MakeRules(ctx_)),
+      window_(*ctx_.process),
+      keep_marks_(keep_stitch_marks) {}
 
 namespace {
 
@@ -33,16 +37,16 @@ void Verifier::MarkStitch(long stitch, std::size_t errors_before, std::size_t wa
   if (idx < marks_.size()) marks_[idx].severity = std::max(marks_[idx].severity, sev);
 }
 
-void Verifier::OnLine(const sim::LineRecord& line) {
+void Verifier::OnLine(const trace::LineRecord& line) {
   for (auto& r : rules_) r->OnLine(line);
 }
 
-void Verifier::OnSample(const sim::TraceSample& s) {
+void Verifier::OnSample(const trace::TraceSample& s) {
   const auto [e0, w0] = Totals(rules_);
   for (auto& r : rules_) r->OnSample(s);
   MarkStitch(s.stitch, static_cast<std::size_t>(e0), static_cast<std::size_t>(w0));
 
-  if (s.event == sim::SampleEvent::kNeedleEntry) {
+  if (s.event == trace::SampleEvent::kNeedleEntry) {
     if (window_.Active()) CloseWindow();
     ++stitches_;
     window_.Enter(s.tool_part);
@@ -71,7 +75,7 @@ void Verifier::OnSample(const sim::TraceSample& s) {
   if (s.needles_in) {
     window_.Update(s.tool_part);
     last_in_sample_ = s;
-    if (s.event == sim::SampleEvent::kNeedleExit) CloseWindow();
+    if (s.event == trace::SampleEvent::kNeedleExit) CloseWindow();
   } else {
     CloseWindow();
   }

@@ -8,8 +8,11 @@
 #include "stitchsim/scene/scene.h"
 #include "stitchsim/sim/kinematics.h"
 #include "stitchsim/sim/robot_model.h"
+#include "stitchsim/trace/trace.h"
 
 namespace stitchsim::sim {
+
+class CollisionWorld;
 
 /// Immutable: the robot, the head's tool frame, the part's mount and the rail policy.
 struct CellSetup {
@@ -48,5 +51,9 @@ ToolPoseSolution SolveToolPose(const CellSetup& cell, const Eigen::Isometry3d& t
 
 /// Tool pose in the part frame (translation mm) for joints `q` (FK; inverse of the above).
 Eigen::Isometry3d ToolPoseInPart(const CellSetup& cell, const JointVector& q);
+
+/// The trace's description of the cell: joint names, limits and speeds from `robot`, and the
+/// body table of `collision` (none, and collision_checked false, when it is null).
+trace::CellDescription DescribeCell(const RobotModel& robot, const CollisionWorld* collision);
 
 }  // namespace stitchsim::sim

@@ -13,14 +13,12 @@
 #include "stitchsim/common/diagnostics.h"
 #include "stitchsim/scene/scene.h"
 #include "stitchsim/sim/robot_model.h"
+#include "stitchsim/trace/trace.h"
 
 namespace stitchsim::sim {
 
-/// Which family of bodies a contact belongs to (the verifier's rules split on this).
-enum class ContactClass {
-  kHeadPart,   ///< head vs mold, preform or a constraint  -> collision.head_mold
-  kRobotCell,  ///< arm, carriage or head vs rail, rotator, table, floor, each other
-};
+/// Which family of bodies a contact belongs to (a trace type: samples carry contacts).
+using trace::ContactClass;
 
 struct Contact {
   ContactClass kind = ContactClass::kHeadPart;
@@ -66,6 +64,9 @@ class CollisionWorld {
   /// Largest distance any point of a moving body travels between `a` and `b` (metres); the
   /// executor bounds its step with it so no contact slips between samples.
   virtual double MaxPointTravel(const JointVector& a, const JointVector& b) const = 0;
+  /// Names of the bodies, in a fixed order (the trace's body table, CellDescription::bodies);
+  /// every name in a CollisionResult is one of them.
+  virtual std::vector<std::string> BodyNames() const = 0;
 };
 
 }  // namespace stitchsim::sim

@@ -14,6 +14,7 @@
 #include "stitchsim/sim/cell.h"
 #include "stitchsim/sim/collision.h"
 #include "stitchsim/sim/trace.h"
+#include "stitchsim/trace/trace.h"
 
 namespace stitchsim::sim {
 
@@ -32,11 +33,16 @@ struct ExecuteOptions {
   /// Look ahead over the whole programme (seekable input only) to start a4 and a6 on the
   /// 2 pi branch that keeps their full travel within limits.
   bool choose_start_branch = true;
-  /// When set, each line is subdivided (extra IK samples, event kNone, with joints) until the
-  /// bound on any body's motion between consecutive joint samples, MaxPointTravel, is no more
-  /// than the clearance measured at the earlier one: no contact can slip between samples.
+  /// When set, the world is queried at every sample with usable joints and its answer written
+  /// into the sample (TraceSample::collision: contacts, clearance, query errors), and each
+  /// line is subdivided (extra IK samples, event kNone, with joints) until the bound on any
+  /// body's motion between consecutive joint samples, MaxPointTravel, is no more than the
+  /// clearance measured at the earlier one: no contact can slip between samples.
   /// Null (the default): no collision queries, sampling unchanged.
   CollisionWorld* collision = nullptr;
+  /// False: no subdivision, the world is queried at the plain grid's samples only (tests show
+  /// with it what the subdivision catches).
+  bool collision_subdivide = true;
   /// Smallest step bound (m): where the clearance is below it, steps of this much motion are
   /// taken anyway (so the walk ends); a feature thinner than this could slip between samples
   /// only where the head is already closer than this to something.
@@ -53,6 +59,7 @@ struct ExecuteOptions {
   bool require_program_end = true;
 };
 
+/// The head's speeds and the mounted head from `scene`; no collision world.
 ExecuteOptions ExecuteOptionsFor(const scene::Scene& scene);
 
 struct ExecutionSummary {

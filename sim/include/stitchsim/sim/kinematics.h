@@ -46,24 +46,13 @@ Eigen::Isometry3d ArmBasePose(const RobotModel& model, double rail_m);
 // ---------------------------------------------------------------------------------------------
 // Arm configuration
 
-/// Wrist centre in front of the a1 axis (on the side of the a2 offset) or behind it.
-enum class Shoulder { kFront, kBack };
-/// Forearm bent forward relative to the upper arm (OPW t3 + atan2(a2, c3) >= 0) or backward.
-/// With the shoulder in front, kUp is the usual "elbow up".
-enum class Elbow { kUp, kDown };
-/// Wrist angle t5 (OPW, = a5 on this cell) >= 0: kNoFlip; < 0: kFlip.
-enum class Wrist { kNoFlip, kFlip };
-
-/// The 8 IK branches of the arm (KUKA: the Status bits).
-struct ArmConfiguration {
-  Shoulder shoulder = Shoulder::kFront;
-  Elbow elbow = Elbow::kUp;
-  Wrist wrist = Wrist::kNoFlip;
-  bool operator==(const ArmConfiguration&) const = default;
-};
-
-/// "front/up/noflip" and the like.
-std::string ToString(const ArmConfiguration& configuration);
+// The arm configuration (shoulder, elbow, wrist) and the IK status are trace types.
+using trace::ArmConfiguration;
+using trace::Elbow;
+using trace::IkStatus;
+using trace::Shoulder;
+using trace::ToString;
+using trace::Wrist;
 
 /// The configuration the arm joints of `q` are in.
 ArmConfiguration ArmConfigurationOf(const RobotModel& model, const JointVector& q);
@@ -100,20 +89,6 @@ struct ArmIkSolutions {
 ArmIkSolutions AllArmIkSolutions(const RobotModel& model,
                                  const Eigen::Isometry3d& flange_target_world, double rail_m,
                                  const ArmJointVector* hint = nullptr);
-
-/// Outcome of SolveIk. Expected failures are values, never exceptions.
-enum class IkStatus {
-  kOk,
-  kUnreachable,          // no analytic solution: the wrist centre is out of reach
-  kJointLimit,           // solutions exist, but every one violates a joint limit (or rail)
-  kWristSingularity,     // |sin a5| below the threshold: a4 and a6 nearly aligned
-  kShoulderSingularity,  // wrist centre (nearly) on the a1 axis
-  kConfigFlip,           // the nearest valid solution changes shoulder/elbow/wrist vs previous
-};
-
-/// "ok", "unreachable", "joint-limit", "wrist-singularity", "shoulder-singularity",
-/// "config-flip".
-std::string_view ToString(IkStatus status);
 
 struct IkOptions {
   /// Wrist singular when |sin(t5)| < sin(this) (t5 = a5 on this cell). Radians.

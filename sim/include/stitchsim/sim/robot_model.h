@@ -12,23 +12,18 @@
 #include <vector>
 
 #include "stitchsim/common/diagnostics.h"
+#include "stitchsim/trace/joints.h"
 
 namespace stitchsim::sim {
 
-inline constexpr int kNumJoints = 8;
-inline constexpr int kNumArmJoints = 6;
-
-/// Index of each movable joint in a JointVector (the model joint order).
-enum JointIndex : int {
-  kRailX = 0,  // prismatic floor rail, metres
-  kA1 = 1,     // arm axes a1..a6, radians (URDF convention, KUKA axis signs)
-  kA2 = 2,
-  kA3 = 3,
-  kA4 = 4,
-  kA5 = 5,
-  kA6 = 6,
-  kRotator = 7,  // turntable, radians
-};
+// The joint vector and its layout are trace types (the trace carries joints); sim's names for
+// them.
+using trace::ArmJointVector;
+using trace::JointIndex;
+using trace::JointVector;
+using trace::kNumArmJoints;
+using trace::kNumJoints;
+using enum trace::JointIndex;
 
 /// URDF names of the movable joints, in model order.
 inline constexpr std::array<std::string_view, kNumJoints> kJointNames = {
@@ -37,11 +32,6 @@ inline constexpr std::array<std::string_view, kNumJoints> kJointNames = {
 /// URDF names of the links the kinematics needs besides the joints' links.
 inline constexpr std::string_view kFlangeLinkName = "flange";
 inline constexpr std::string_view kRotatorLinkName = "rotator";
-
-/// Joint positions in model order: rail_x in metres, a1..a6 and rotator in radians.
-using JointVector = Eigen::Matrix<double, kNumJoints, 1>;
-/// Arm joints a1..a6 in radians, URDF convention (JointVector entries kA1..kA6).
-using ArmJointVector = Eigen::Matrix<double, kNumArmJoints, 1>;
 
 enum class JointType { kPrismatic, kRevolute };
 

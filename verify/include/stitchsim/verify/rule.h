@@ -11,9 +11,7 @@
 
 #include "stitchsim/process/stitch_cycle.h"
 #include "stitchsim/scene/scene.h"
-#include "stitchsim/sim/collision.h"
-#include "stitchsim/sim/robot_model.h"
-#include "stitchsim/sim/trace.h"
+#include "stitchsim/trace/trace.h"
 #include "stitchsim/verify/report.h"
 
 namespace stitchsim::verify {
@@ -24,7 +22,7 @@ struct WindowRecord {
   int entry_line = 0;  ///< line where the needles entered
   int exit_line = 0;   ///< line where they left
   process::WindowMetrics metrics;
-  sim::TraceSample exit_sample;  ///< the last sample of the window (for snapshots)
+  trace::TraceSample exit_sample;  ///< the last sample of the window (for snapshots)
 };
 
 /// The needles pierce the preform: where, and how the head stood.
@@ -34,16 +32,16 @@ struct PenetrationRecord {
   Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();  ///< part frame, mm
   std::vector<std::optional<Eigen::Vector3d>> points;      ///< per needle, on the surface
   geom::SurfaceProjection foot;  ///< the tool point projected on the stitching surface
-  sim::TraceSample sample;
+  trace::TraceSample sample;
 };
 
-/// What rules may read besides the trace.
+/// What rules may read besides the trace. Rules keep pointers to these, not to the context.
 struct RuleContext {
   const scene::Scene* scene = nullptr;
-  const sim::RobotModel* robot = nullptr;
+  /// The trace producer's description of the cell (joint limits, speeds, names, the collision
+  /// body table); the collision.* rules run only when its collision_checked is set.
+  const trace::CellDescription* cell = nullptr;
   const process::ProcessModel* process = nullptr;
-  /// The scene's collision world; the collision.* rules run only when it is set.
-  sim::CollisionWorld* collision = nullptr;
   /// The stitch count the programme's header declares (`stitches=N`), if it declares one:
   /// program.stitch_count checks the run makes exactly that many.
   std::optional<long> declared_stitches = std::nullopt;
@@ -52,15 +50,15 @@ struct RuleContext {
 class Rule {
  public:
   virtual ~Rule() = default;
-  virtual void OnLine(const sim::LineRecord&) {}
-  virtual void OnSample(const sim::TraceSample&) {}
+  virtual void OnLine(const trace::LineRecord&) {}
+  virtual void OnSample(const trace::TraceSample&) {}
   virtual void OnWindow(const WindowRecord&) {}
   virtual void OnPenetration(const PenetrationRecord&) {}
   virtual void Finish(const RuleContext&) {}
 
   const RuleSummary& Summary() const { return summary_; }
   /// The trace sample at the worst finding, for the close-up snapshot.
-  const std::optional<sim::TraceSample>& WorstSample() const { return worst_sample_; }
+  const std::optional<trace::TraceSample>& WorstSample() const { return worst_sample_; }
 
  protected:
   Rule(std::string id, std::string description, std::string unit);
@@ -70,7 +68,7 @@ class Rule {
   template <typename WhatFn>
   std::optional<FindingSeverity> CheckUpper(double value, int line, long stitch,
                                             const std::string& subject, WhatFn&& what,
-                                            const sim::TraceSample* sample) {
+                                            const trace::TraceSample* sample) {
     const std::optional<FindingSeverity> sev = Classify(value, line, stitch, sample);
     if (sev) RecordExceeded(*sev, value, line, stitch, subject, what(), sample);
     return sev;
@@ -78,17 +76,17 @@ class Rule {
   void Counted() { ++summary_.checked; }
   /// The counting / worst-tracking half of CheckUpper: the severity `value` deserves.
   std::optional<FindingSeverity> Classify(double value, int line, long stitch,
-                                          const sim::TraceSample* sample);
+                                          const trace::TraceSample* sample);
   void RecordExceeded(FindingSeverity severity, double value, int line, long stitch,
                       const std::string& subject, const std::string& what,
-                      const sim::TraceSample* sample);
+                      const trace::TraceSample* sample);
   /// Records a finding directly (for yes/no rules). Findings are one per line: a second
   /// finding on a line already reported merges into it (the worse one's value, subject and
   /// message stay; error beats warning, then the larger value over its limit).
   void Record(FindingSeverity severity, double value, double limit, int line, long stitch,
-              const std::string& subject, std::string message, const sim::TraceSample* sample);
+              const std::string& subject, std::string message, const trace::TraceSample* sample);
   /// Tracks the worst value without a finding.
-  void Observe(double value, int line, long stitch, const sim::TraceSample* sample);
+  void Observe(double value, int line, long stitch, const trace::TraceSample* sample);
   /// Adds a subject with its own limits (RuleSummary::subjects); returns its index.
   std::size_t AddSubject(std::string subject, std::optional<double> error_limit,
                          std::optional<double> warning_limit);
@@ -96,7 +94,7 @@ class Rule {
   void ObserveSubject(std::size_t index, double value, int line, long stitch);
 
   RuleSummary summary_;
-  std::optional<sim::TraceSample> worst_sample_;
+  std::optional<trace::TraceSample> worst_sample_;
 
  private:
   /// Severity first, then value over limit (value alone when there is no positive limit).

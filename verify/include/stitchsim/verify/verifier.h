@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "stitchsim/process/stitch_cycle.h"
-#include "stitchsim/sim/trace.h"
+#include "stitchsim/trace/trace.h"
 #include "stitchsim/verify/report.h"
 #include "stitchsim/verify/rule.h"
 
@@ -19,14 +19,18 @@ struct StitchMark {
   std::uint8_t severity = 0;    ///< 0 clean, 1 warning, 2 error
 };
 
-class Verifier : public sim::TraceSink {
+class Verifier : public trace::TraceSink {
  public:
-  /// `ctx` members must outlive the verifier. With `keep_stitch_marks`, every stitch's
-  /// position and worst severity is kept for the overview snapshot (13 bytes a stitch).
+  /// What `ctx` points to must outlive the verifier (`ctx` itself is copied: a temporary is
+  /// fine). With `keep_stitch_marks`, every stitch's position and worst severity is kept for
+  /// the overview snapshot (13 bytes a stitch).
   Verifier(const RuleContext& ctx, bool keep_stitch_marks);
+  /// Rules refer to the verifier's own copy of the context: it stays where it is.
+  Verifier(const Verifier&) = delete;
+  Verifier& operator=(const Verifier&) = delete;
 
-  void OnLine(const sim::LineRecord& line) override;
-  void OnSample(const sim::TraceSample& sample) override;
+  void OnLine(const trace::LineRecord& line) override;
+  void OnSample(const trace::TraceSample& sample) override;
 
   /// Closes the trace and fills the report's rules, counts and verdict.
   void Finish(Report& report);
@@ -43,7 +47,7 @@ class Verifier : public sim::TraceSink {
   process::NeedleWindow window_;
   long window_stitch_ = 0;
   int window_entry_line_ = 0;
-  sim::TraceSample last_in_sample_;
+  trace::TraceSample last_in_sample_;
   bool keep_marks_ = false;
   std::vector<StitchMark> marks_;
   long stitches_ = 0;

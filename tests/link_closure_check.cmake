@@ -1,0 +1,20 @@
+# cmake -DCLOSURE=<file> -DFORBIDDEN=<a;b;...> -P link_closure_check.cmake
+# Fails when a library in the closure file (stitchsim_write_link_closure) matches a forbidden
+# name (case-insensitive substring): e.g. verify must not link the simulator or its libraries.
+file(STRINGS ${CLOSURE} closure)
+list(JOIN closure ", " shown)
+message(STATUS "${CLOSURE}: ${shown}")
+set(bad)
+foreach(lib IN LISTS closure)
+  string(TOLOWER "${lib}" lower)
+  foreach(f IN LISTS FORBIDDEN)
+    string(TOLOWER "${f}" fl)
+    string(FIND "${lower}" "${fl}" at)
+    if(NOT at EQUAL -1)
+      list(APPEND bad ${lib})
+    endif()
+  endforeach()
+endforeach()
+if(bad)
+  message(FATAL_ERROR "${CLOSURE}: links ${bad}, which it must not")
+endif()
