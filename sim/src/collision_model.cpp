@@ -38,19 +38,37 @@ bool RidesOnTheRobot(const RobotModel& robot, int link) {
   return false;
 }
 
-// Marks the process contacts a head geom may make (head:<name> vs preform / mold).
-void AllowProcessContacts(const scene::HeadSpec& head, const std::string& n, Body& b) {
-  const bool rs535 = head.kind == scene::HeadKind::kSingleSidedStitch;
-  const bool rs566 = head.kind == scene::HeadKind::kDoubleSidedStitch;
-  const bool afp = head.kind == scene::HeadKind::kAfp;
-  const bool needle = n.rfind("needle", 0) == 0 && n != "needle_bar" && n != "needle_housing";
-  // Needles pierce the preform (RS535: the catcher meets the stitching-tool surface);
-  // the presser foot presses the preform top; the AFP roller compacts the laminate; the
-  // RS566 table and lower C-frame arm run under the preform (where the mold is open).
-  b.allow_preform = needle || n == "presser_foot" || (afp && n == "roller") ||
-                    (rs566 && (n == "ee_table" || n == "cframe_lower_arm"));
-  b.allow_mold = (needle && (rs535 || rs566)) || (afp && n == "roller") ||
-                 (rs566 && (n == "ee_table" || n == "cframe_lower_arm"));
+// Marks the process contacts the head spec allows head geom `name` (head:<name> vs preform /
+// mold).
+void AllowProcessContacts(const scene::HeadSpec& head, const std::string& name, Body& b) {
+  for (const scene::AllowedContact& c : head.allowed_contacts) {
+    if (!c.Matches(name)) continue;
+    b.allow_preform = b.allow_preform || c.preform;
+    b.allow_mold = b.allow_mold || c.mold;
+  }
+}
+
+// Every allowed contact of the head spec names a geom of the head's MJCF; else an error at
+// its entry in the head file.
+bool AllowedContactsNameHeadGeoms(const scene::HeadSpec& head,
+                                  const std::vector<detail::MjcfGeom>& geoms,
+                                  DiagnosticSink& sink) {
+  std::string names;
+  for (const auto& g : geoms) {
+    if (g.in_head) names += (names.empty() ? "" : ", ") + g.name;
+  }
+  bool ok = true;
+  for (const scene::AllowedContact& c : head.allowed_contacts) {
+    const bool found = std::any_of(geoms.begin(), geoms.end(), [&](const detail::MjcfGeom& g) {
+      return g.in_head && c.Matches(g.name);
+    });
+    if (found) continue;
+    sink.Error("head-unknown-body", c.where,
+               "allowed_contacts: no geom of " + head.mjcf.filename().string() + " is named '" +
+                   c.head + "' (its geoms: " + names + ")");
+    ok = false;
+  }
+  return ok;
 }
 
 // The body of one compiled MJCF geom (robot, cell or head).
@@ -277,7 +295,7 @@ std::shared_ptr<const CollisionModel> BuildCollisionModel(const scene::Scene& sc
   for (const auto& l : robot.links()) link_names.push_back(l.name);
   bool ok = false;
   const auto geoms = detail::LoadMjcfGeoms(scene.cell_mjcf, scene.head.mjcf, link_names, sink, ok);
-  if (!ok) return nullptr;
+  if (!ok || !AllowedContactsNameHeadGeoms(scene.head, geoms, sink)) return nullptr;
   for (const auto& g : geoms) {
     if (!g.in_head && scene.OmitsMjcfBody(g.top_body)) continue;  // cell.omit
     model->bodies.push_back(BodyOfGeom(*model, scene, g));

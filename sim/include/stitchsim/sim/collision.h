@@ -1,9 +1,9 @@
 #pragma once
 // Interference checking with FCL: the robot (arm links, carriage), the head, the cell (rail,
 // rotator, table, floor), the mold, the preform and the constraints. Contacts the process
-// needs are allowed by name per head (needles in the preform, the AFP roller on the laminate,
-// the RS566 table under the preform); everything else counts. A geometry pair FCL cannot
-// check is an error, never "clear".
+// needs are listed in the head file (`allowed_contacts`: needles in the preform, the AFP
+// roller on the laminate, the RS566 table under the preform); everything else counts. A
+// geometry pair FCL cannot check is an error, never "clear".
 
 #include <Eigen/Geometry>
 #include <memory>
