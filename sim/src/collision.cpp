@@ -66,20 +66,28 @@ const Body& BodyAt(const CollisionModel& model, int i) {
   return model.bodies[static_cast<std::size_t>(i)];
 }
 
+void PlaceBody(const CollisionModel& model, CollisionData& data, std::size_t i,
+               const Eigen::Isometry3d& part) {
+  const Body& b = model.bodies[i];
+  const Eigen::Isometry3d frame =
+      b.group == Group::kPart ? part : data.frames.world_pose[static_cast<std::size_t>(b.link)];
+  fcl::CollisionObjectd& object = *data.objects[i];
+  object.setTransform(detail::ToFcl(frame * b.local));
+  data.obb[i] = detail::ObbOf(object, b.fitted ? &*b.fitted : nullptr);
+  data.box[i] = detail::BoxOf(data.obb[i]);
+}
+
+// Every body at the first placement; after that only the moving ones (fixed bodies keep
+// their first placement).
 void Place(const CollisionModel& model, CollisionData& data, const JointVector& q) {
   ForwardKinematics(model.robot, q, data.frames);
   const Eigen::Isometry3d part = PartPoseWorld(model.cell, q[kRotator]);
   data.part_world = part;
-  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
-    const Body& b = model.bodies[i];
-    if (data.placed && !b.moves) continue;  // fixed bodies keep their first placement
-    const Eigen::Isometry3d frame =
-        b.group == Group::kPart ? part : data.frames.world_pose[static_cast<std::size_t>(b.link)];
-    fcl::CollisionObjectd& object = *data.objects[i];
-    object.setTransform(detail::ToFcl(frame * b.local));
-    data.obb[i] = detail::ObbOf(object, b.fitted ? &*b.fitted : nullptr);
-    data.box[i] = detail::BoxOf(data.obb[i]);
+  if (data.placed) {
+    for (int i : model.moving_bodies) PlaceBody(model, data, static_cast<std::size_t>(i), part);
+    return;
   }
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) PlaceBody(model, data, i, part);
   data.placed = true;
 }
 
@@ -155,9 +163,14 @@ void UpdateNear(const CollisionModel& model, CollisionData& data, std::size_t k,
   n.env.clear();
   n.q_ref = q;
   n.radius = cutoff + kNearMarginM;
-  const fcl::AABBd& box = data.box[static_cast<std::size_t>(model.robot_bodies[k])];
+  const int r = model.robot_bodies[k];
+  const fcl::AABBd& box = data.box[static_cast<std::size_t>(r)];
   for (int e : model.fixed_env) {
-    if (box.distance(data.box[static_cast<std::size_t>(e)]) < n.radius) n.env.push_back(e);
+    // Only checked pairs: the list's order is kept, so the pairs are visited as before.
+    if (model.Checked(r, e) &&
+        detail::BoxDistance(box, data.box[static_cast<std::size_t>(e)]) < n.radius) {
+      n.env.push_back(e);
+    }
   }
 }
 
@@ -232,10 +245,11 @@ void Clearance(const CollisionModel& model, CollisionData& data, double cutoff,
   // Candidates: world boxes closer than the best so far, then an oriented-box lower bound.
   auto& candidates = data.candidates;
   candidates.clear();
+  const fcl::AABBd* box = data.box.data();
+  const Obb* obb = data.obb.data();
   ForEachPair(model, data, [&](int i, int j) {
-    const auto a = static_cast<std::size_t>(i), b = static_cast<std::size_t>(j);
-    if (!model.Checked(i, j) || data.box[a].distance(data.box[b]) >= best) return;
-    const double lb = detail::ObbGapLowerBound(data.obb[a], data.obb[b], best);
+    if (!model.Checked(i, j) || detail::BoxDistance(box[i], box[j]) >= best) return;
+    const double lb = detail::ObbGapLowerBound(obb[i], obb[j], best);
     if (lb < best) candidates.push_back({lb, i, j});
   });
   // Exact distances nearest-bound first; a pair whose bound is no less than the best distance
@@ -341,10 +355,11 @@ CollisionResult CheckCollision(const CollisionModel& model, CollisionData& data,
   const double cutoff = std::max(options.clearance_cutoff_m, 0.0);
   for (std::size_t k = 0; k < model.robot_bodies.size(); ++k) UpdateNear(model, data, k, q, cutoff);
   // Overlapping world boxes of tilted or large bodies often have separated oriented boxes.
+  const fcl::AABBd* box = data.box.data();
+  const Obb* obb = data.obb.data();
   ForEachPair(model, data, [&](int i, int j) {
-    const auto a = static_cast<std::size_t>(i), b = static_cast<std::size_t>(j);
-    if (model.Checked(i, j) && data.box[a].overlap(data.box[b]) &&
-        detail::ObbGapLowerBound(data.obb[a], data.obb[b], 1e-12) <= 0.0) {
+    if (model.Checked(i, j) && detail::BoxesOverlap(box[i], box[j]) &&
+        detail::ObbGapLowerBound(obb[i], obb[j], 1e-12) <= 0.0) {
       CheckPair(model, data, i, j, result);
     }
   });

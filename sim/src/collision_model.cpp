@@ -209,6 +209,7 @@ bool ProbeCheckedPairs(const CollisionModel& model, const scene::Scene& scene,
 void ListBroadPhaseGroups(CollisionModel& model) {
   for (int i = 0; i < model.n; ++i) {
     const Body& b = model.bodies[static_cast<std::size_t>(i)];
+    if (b.moves) model.moving_bodies.push_back(i);
     if (b.group == Group::kRobot) {
       model.robot_bodies.push_back(i);
     } else {

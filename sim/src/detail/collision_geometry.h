@@ -68,6 +68,30 @@ inline fcl::AABBd BoxOf(const Obb& o) {
   return fcl::AABBd(o.c - half, o.c + half);
 }
 
+/// fcl::AABB::distance, inline (the same arithmetic, so the same bits): the broad phase asks
+/// it of millions of box pairs.
+inline double BoxDistance(const fcl::AABBd& a, const fcl::AABBd& b) {
+  double result = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (a.min_[i] > b.max_[i]) {
+      const double delta = b.max_[i] - a.min_[i];
+      result += delta * delta;
+    } else if (b.min_[i] > a.max_[i]) {
+      const double delta = a.max_[i] - b.min_[i];
+      result += delta * delta;
+    }
+  }
+  return std::sqrt(result);
+}
+
+/// fcl::AABB::overlap, inline.
+inline bool BoxesOverlap(const fcl::AABBd& a, const fcl::AABBd& b) {
+  for (int i = 0; i < 3; ++i) {
+    if (a.min_[i] > b.max_[i] || a.max_[i] < b.min_[i]) return false;
+  }
+  return true;
+}
+
 /// A lower bound on the distance between two oriented boxes: the largest gap between their
 /// projections on the 15 separating-axis candidates (projection never lengthens a distance).
 /// 0 when they may touch. Stops early once an axis shows a gap of at least `enough`.

@@ -71,6 +71,7 @@ class CollisionModel {
   std::vector<int> robot_group;    ///< per robot_bodies entry: its travel_coeff index
   std::vector<int> fixed_env;      ///< environment bodies that never move
   std::vector<int> moving_env;     ///< environment bodies the rotator carries
+  std::vector<int> moving_bodies;  ///< every body whose pose depends on q
   std::vector<std::pair<int, int>> robot_self_pairs;  ///< checked robot-robot pairs
   /// MaxPointTravel: per robot rigid group, metres per unit of each joint's motion.
   std::vector<JointVector> travel_coeff;
