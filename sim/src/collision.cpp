@@ -66,28 +66,24 @@ const Body& BodyAt(const CollisionModel& model, int i) {
   return model.bodies[static_cast<std::size_t>(i)];
 }
 
-void PlaceBody(const CollisionModel& model, CollisionData& data, std::size_t i,
-               const Eigen::Isometry3d& part) {
-  const Body& b = model.bodies[i];
-  const Eigen::Isometry3d frame =
-      b.group == Group::kPart ? part : data.frames.world_pose[static_cast<std::size_t>(b.link)];
-  fcl::CollisionObjectd& object = *data.objects[i];
-  object.setTransform(detail::ToFcl(frame * b.local));
-  data.obb[i] = detail::ObbOf(object, b.fitted ? &*b.fitted : nullptr);
-  data.box[i] = detail::BoxOf(data.obb[i]);
-}
-
 // Every body at the first placement; after that only the moving ones (fixed bodies keep
 // their first placement).
 void Place(const CollisionModel& model, CollisionData& data, const JointVector& q) {
   ForwardKinematics(model.robot, q, data.frames);
   const Eigen::Isometry3d part = PartPoseWorld(model.cell, q[kRotator]);
   data.part_world = part;
-  if (data.placed) {
-    for (int i : model.moving_bodies) PlaceBody(model, data, static_cast<std::size_t>(i), part);
-    return;
+  const bool all = !data.placed;
+  const std::size_t count = all ? model.bodies.size() : model.moving_bodies.size();
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t i = all ? k : static_cast<std::size_t>(model.moving_bodies[k]);
+    const Body& b = model.bodies[i];
+    const Eigen::Isometry3d frame =
+        b.group == Group::kPart ? part : data.frames.world_pose[static_cast<std::size_t>(b.link)];
+    fcl::CollisionObjectd& object = *data.objects[i];
+    object.setTransform(detail::ToFcl(frame * b.local));
+    data.obb[i] = detail::ObbOf(object, b.fitted ? &*b.fitted : nullptr);
+    data.box[i] = detail::BoxOf(data.obb[i]);
   }
-  for (std::size_t i = 0; i < model.bodies.size(); ++i) PlaceBody(model, data, i, part);
   data.placed = true;
 }
 
