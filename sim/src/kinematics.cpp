@@ -151,9 +151,9 @@ namespace {
 // nearest in-limit 2 pi equivalent.
 struct SolutionChoice {
   int best = -1;
-  ArmJointVector best_joints;
+  ArmJointVector best_joints = ArmJointVector::Zero();
   int nearest_invalid = -1;
-  ArmJointVector nearest_invalid_joints;
+  ArmJointVector nearest_invalid_joints = ArmJointVector::Zero();
 };
 
 SolutionChoice ChooseSolution(const RobotModel& model, const ArmIkSolutions& solutions,

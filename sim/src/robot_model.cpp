@@ -460,7 +460,7 @@ class RobotModelBuilder {
 
   // Reads the OPW parameters off the URDF zero pose, in the a1 parent (mount) frame.
   bool DeriveOpw() {
-    Eigen::Matrix3d flange_rotation;
+    Eigen::Matrix3d flange_rotation = Eigen::Matrix3d::Identity();
     const ArmAxes m = AxesInMount(flange_rotation);
     OpwGeometry g;
     if (!DeriveBaseFrame(m, g)) return false;
@@ -478,7 +478,7 @@ class RobotModelBuilder {
     g.c2_m = std::hypot(upper_arm.x(), upper_arm.z());
     if (g.c2_m < kGeometryTolerance) return NotOpw(kA3, "a3 lies on the a2 axis");
     const double t2_zero = std::atan2(upper_arm.x(), upper_arm.z());
-    Eigen::Vector3d wrist;
+    Eigen::Vector3d wrist = Eigen::Vector3d::Zero();
     if (!WristCentre(b, wrist)) return false;
     double t23_zero = 0.0, t4_zero = 0.0, t5_zero = 0.0;
     if (!DeriveForearmAndWrist(b, wrist, g, t23_zero, t4_zero, t5_zero)) return false;

@@ -65,7 +65,9 @@ class CollisionWorld {
   /// Builds FCL objects for the cell, the head and the part; diagnostics on failure.
   static std::unique_ptr<CollisionWorld> Create(const scene::Scene& scene, const RobotModel& robot,
                                                 DiagnosticSink& sink);
-  /// Another world on the same model with its own per-query data (for another thread).
+  /// Another world on the same model with its own per-query data, for another thread. Make
+  /// it before other threads query (FCL rewrites each shared geometry's local box, with the
+  /// same values, when it makes an object).
   std::unique_ptr<CollisionWorld> Share() const;
   /// Checks the cell at joints `q` (model order).
   CollisionResult Check(const JointVector& q, const CollisionOptions& options);
