@@ -183,7 +183,71 @@ void ReadEnvelope(detail::YamlReader& r, const YAML::Node& root, HeadSpec& h) {
   }
 }
 
+// `with:` of an allowed contact: preform, mold, or a list of them.
+void ReadContactSlabs(detail::YamlReader& r, const YAML::Node& node, AllowedContact& c) {
+  const bool list = node.IsSequence();
+  if (list && node.size() == 0) r.Error(node, "bad-value", "allowed_contacts: with is empty");
+  for (std::size_t i = 0; i < (list ? node.size() : 1); ++i) {
+    const YAML::Node item = list ? node[i] : node;
+    const auto s = r.String(item, "allowed_contacts with");
+    if (s && *s == "preform") {
+      c.preform = true;
+    } else if (s && *s == "mold") {
+      c.mold = true;
+    } else if (s) {
+      r.Error(item, "bad-value",
+              "allowed_contacts: with must be preform or mold, got '" + *s + "'");
+    }
+  }
+}
+
+// `allowed_contacts: [{head: <geom pattern>, with: preform | mold | [preform, mold]}, ...]`.
+void ReadAllowedContacts(detail::YamlReader& r, const YAML::Node& root, HeadSpec& h) {
+  const auto list = r.Child(root, "allowed_contacts", false);
+  if (!list) return;
+  if (!list->IsSequence()) {
+    r.Error(*list, "type", "allowed_contacts must be a list");
+    return;
+  }
+  for (const auto& item : *list) {
+    if (!r.ExpectMap(item, "an allowed contact")) continue;
+    r.CheckKeys(item, {"head", "with"}, "allowed contact");
+    AllowedContact c;
+    c.where = r.At(item);
+    if (auto n = r.Child(item, "head", true)) {
+      if (auto s = r.String(*n, "allowed_contacts head")) {
+        if (s->empty()) r.Error(*n, "bad-value", "allowed_contacts: head is empty");
+        c.head = *s;
+      }
+    }
+    if (auto n = r.Child(item, "with", true)) ReadContactSlabs(r, *n, c);
+    h.allowed_contacts.push_back(std::move(c));
+  }
+}
+
 }  // namespace
+
+bool AllowedContact::Matches(const std::string& geom_name) const {
+  // Glob with `*` only: p / n walk the pattern and the name; star / mark the last `*` and the
+  // name position it was tried at, to backtrack to.
+  std::size_t p = 0, n = 0, star = std::string::npos, mark = 0;
+  while (n < geom_name.size()) {
+    if (p < head.size() && head[p] == '*') {
+      star = p++;
+      mark = n;
+    } else if (p < head.size() && head[p] == geom_name[n]) {
+      ++p;
+      ++n;
+    } else if (star != std::string::npos) {
+      p = star + 1;
+      n = ++mark;
+    } else {
+      return false;
+    }
+  }
+  while (p < head.size() && head[p] == '*') ++p;
+  return p == head.size();
+}
 
 std::filesystem::path ResolveHeadFile(const std::string& name_or_path,
                                       const std::filesystem::path& relative_to) {
@@ -201,7 +265,7 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
   if (!r.ExpectMap(*root, "a head spec")) return std::nullopt;
   r.CheckKeys(*root,
               {"stitchsim_head", "name", "description", "kind", "tool_number", "mjcf", "tool_frame",
-               "needles", "stitch", "afp", "envelope", "limits"},
+               "needles", "stitch", "afp", "envelope", "limits", "allowed_contacts"},
               "head spec");
   HeadSpec h;
   h.file = file;
@@ -211,6 +275,7 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
   ReadStitchProcess(r, *root, h);
   ReadAfp(r, *root, h);
   ReadEnvelope(r, *root, h);
+  ReadAllowedContacts(r, *root, h);
   if (auto lim = r.Child(*root, "limits", false)) detail::ReadLimitMap(r, *lim, h.limits);
   if (sink.ErrorCount() > errors_before) return std::nullopt;
   return h;

@@ -121,21 +121,22 @@ ArmIkSolutions AllArmIkSolutions(const RobotModel& model,
 
 namespace {
 
-// The solution SolveIk picks, and the nearest one ignoring limits (for the joint-limit report).
+// The valid solution nearest the reference (best < 0: none within limits) and, for the
+// joint-limit report, the nearest one ignoring limits. Weighted distance, axis by axis at its
+// nearest in-limit 2 pi equivalent.
 struct SolutionChoice {
   int best = -1;
-  ArmJointVector best_joints;
+  ArmJointVector best_joints = ArmJointVector::Zero();
   int nearest_invalid = -1;
-  ArmJointVector nearest_invalid_joints;
+  ArmJointVector nearest_invalid_joints = ArmJointVector::Zero();
 };
 
-// Weighted distance of each solution, axis by axis at its nearest in-limit 2 pi equivalent.
 SolutionChoice ChooseSolution(const RobotModel& model, const ArmIkSolutions& solutions,
                               const JointVector& reference, const IkOptions& options) {
   const JointVector& lower = model.lower_limits();
   const JointVector& upper = model.upper_limits();
   const double tol = options.limit_tolerance;
-  SolutionChoice c;
+  SolutionChoice choice;
   double best_cost = std::numeric_limits<double>::infinity();
   double nearest_invalid_cost = std::numeric_limits<double>::infinity();
   for (int i = 0; i < solutions.count; ++i) {
@@ -161,18 +162,64 @@ SolutionChoice ChooseSolution(const RobotModel& model, const ArmIkSolutions& sol
       cost += std::pow(scale * (joints(j) - reference(m)), 2);
     }
     if (valid && cost < best_cost) {
-      c.best = i;
+      choice.best = i;
       best_cost = cost;
-      c.best_joints = joints;
+      choice.best_joints = joints;
     }
     if (unlimited_cost < nearest_invalid_cost) {
-      c.nearest_invalid = i;
+      choice.nearest_invalid = i;
       nearest_invalid_cost = unlimited_cost;
-      c.nearest_invalid_joints = unlimited;
+      choice.nearest_invalid_joints = unlimited;
     }
   }
+  return choice;
+}
 
-  return c;
+// kJointLimit: every solution violates a limit; the nearest one and its offending axes.
+void ReportJointLimits(const RobotModel& model, const ArmIkSolutions& solutions,
+                       const SolutionChoice& choice, const JointVector& reference, double tol,
+                       IkResult& result) {
+  const JointVector& lower = model.lower_limits();
+  const JointVector& upper = model.upper_limits();
+  const ArmIkSolution& s = solutions.solution[static_cast<std::size_t>(choice.nearest_invalid)];
+  result.status = IkStatus::kJointLimit;
+  result.joints.segment<kNumArmJoints>(kA1) = choice.nearest_invalid_joints;
+  result.configuration = s.configuration;
+  result.reason = "all " + std::to_string(solutions.count) +
+                  " solutions violate joint limits; nearest (" + ToString(s.configuration) + "):";
+  for (int j = 0; j < kNumArmJoints; ++j) {
+    const int m = kA1 + j;
+    if (!NearestEquivalentWithin(s.joints_rad(j), reference(m), lower(m) - tol, upper(m) + tol)) {
+      result.reason += " " + std::string(kJointNames[static_cast<std::size_t>(m)]) + " " +
+                       Degrees(choice.nearest_invalid_joints(j)) + " deg outside [" +
+                       Degrees(lower(m)) + ", " + Degrees(upper(m)) + "]";
+    }
+  }
+}
+
+// The status of the chosen solution: kOk unless near a singularity or in another
+// configuration than `previous`.
+void ClassifyChosen(const RobotModel& model, const ArmIkSolutions& solutions,
+                    const ArmIkSolution& chosen, const JointVector* previous,
+                    const IkOptions& options, IkResult& result) {
+  result.status = IkStatus::kOk;
+  if (solutions.wrist_centre_radius_m < options.shoulder_singularity_m) {
+    result.status = IkStatus::kShoulderSingularity;
+    result.reason = "wrist centre " + Metres(solutions.wrist_centre_radius_m) +
+                    " m from the a1 axis (threshold " + Metres(options.shoulder_singularity_m) +
+                    " m)";
+  } else if (std::abs(chosen.sin_wrist) < std::sin(options.wrist_singularity_rad)) {
+    result.status = IkStatus::kWristSingularity;
+    result.reason = "a4 and a6 nearly aligned: wrist angle " +
+                    Degrees(std::asin(std::abs(chosen.sin_wrist))) + " deg from straight " +
+                    "(threshold " + Degrees(options.wrist_singularity_rad) + " deg)";
+  } else if (previous != nullptr) {
+    const ArmConfiguration before = ArmConfigurationOf(model, *previous);
+    if (!(before == chosen.configuration)) {
+      result.status = IkStatus::kConfigFlip;
+      result.reason = "configuration " + ToString(before) + " -> " + ToString(chosen.configuration);
+    }
+  }
 }
 
 }  // namespace
@@ -209,49 +256,14 @@ IkResult SolveIk(const RobotModel& model, const Eigen::Isometry3d& flange_target
   }
 
   const SolutionChoice choice = ChooseSolution(model, solutions, reference, options);
-  const int best = choice.best;
-  const ArmJointVector& best_joints = choice.best_joints;
-  const int nearest_invalid = choice.nearest_invalid;
-  const ArmJointVector& nearest_invalid_joints = choice.nearest_invalid_joints;
-  if (best < 0) {
-    const ArmIkSolution& s = solutions.solution[static_cast<std::size_t>(nearest_invalid)];
-    result.status = IkStatus::kJointLimit;
-    result.joints.segment<kNumArmJoints>(kA1) = nearest_invalid_joints;
-    result.configuration = s.configuration;
-    result.reason = "all " + std::to_string(solutions.count) +
-                    " solutions violate joint limits; nearest (" + ToString(s.configuration) + "):";
-    for (int j = 0; j < kNumArmJoints; ++j) {
-      const int m = kA1 + j;
-      if (!NearestEquivalentWithin(s.joints_rad(j), reference(m), lower(m) - tol, upper(m) + tol)) {
-        result.reason += " " + std::string(kJointNames[static_cast<std::size_t>(m)]) + " " +
-                         Degrees(nearest_invalid_joints(j)) + " deg outside [" + Degrees(lower(m)) +
-                         ", " + Degrees(upper(m)) + "]";
-      }
-    }
+  if (choice.best < 0) {
+    ReportJointLimits(model, solutions, choice, reference, tol, result);
     return result;
   }
-
-  const ArmIkSolution& chosen = solutions.solution[static_cast<std::size_t>(best)];
-  result.joints.segment<kNumArmJoints>(kA1) = best_joints;
+  const ArmIkSolution& chosen = solutions.solution[static_cast<std::size_t>(choice.best)];
+  result.joints.segment<kNumArmJoints>(kA1) = choice.best_joints;
   result.configuration = chosen.configuration;
-  result.status = IkStatus::kOk;
-  if (solutions.wrist_centre_radius_m < options.shoulder_singularity_m) {
-    result.status = IkStatus::kShoulderSingularity;
-    result.reason = "wrist centre " + Metres(solutions.wrist_centre_radius_m) +
-                    " m from the a1 axis (threshold " + Metres(options.shoulder_singularity_m) +
-                    " m)";
-  } else if (std::abs(chosen.sin_wrist) < std::sin(options.wrist_singularity_rad)) {
-    result.status = IkStatus::kWristSingularity;
-    result.reason = "a4 and a6 nearly aligned: wrist angle " +
-                    Degrees(std::asin(std::abs(chosen.sin_wrist))) + " deg from straight " +
-                    "(threshold " + Degrees(options.wrist_singularity_rad) + " deg)";
-  } else if (previous != nullptr) {
-    const ArmConfiguration before = ArmConfigurationOf(model, *previous);
-    if (!(before == chosen.configuration)) {
-      result.status = IkStatus::kConfigFlip;
-      result.reason = "configuration " + ToString(before) + " -> " + ToString(chosen.configuration);
-    }
-  }
+  ClassifyChosen(model, solutions, chosen, previous, options, result);
   return result;
 }
 

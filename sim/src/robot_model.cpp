@@ -335,31 +335,45 @@ class RobotModelBuilder {
     return false;
   }
 
-  // Reads the OPW parameters off the URDF zero pose, in the a1 parent (mount) frame.
-  bool DeriveOpw() {
-    const double tol = kGeometryTolerance;
+  // The arm at the URDF zero pose: a point on each axis and its direction, and the flange
+  // position; in the mount frame (the a1 parent), later in the OPW base frame.
+  struct ArmAxes {
+    std::array<Eigen::Vector3d, kNumArmJoints> p;
+    std::array<Eigen::Vector3d, kNumArmJoints> d;
+    Eigen::Vector3d flange;
+  };
+
+  static double SignOf(double v) { return v >= 0.0 ? 1.0 : -1.0; }
+
+  // The axes in the mount frame, and the flange's orientation there.
+  ArmAxes AxesInMount(Eigen::Matrix3d& flange_rotation) const {
     LinkFrames frames = MakeLinkFrames(model_);
     ForwardKinematics(model_, JointVector::Zero(), frames);
     const Eigen::Isometry3d mount_inv =
         frames.world_pose[static_cast<std::size_t>(model_.arm_mount_link_)].inverse();
-    std::array<Eigen::Vector3d, kNumArmJoints> p;  // a point on each axis, mount frame
-    std::array<Eigen::Vector3d, kNumArmJoints> d;  // each axis direction, mount frame
+    ArmAxes m;
     for (int j = 0; j < kNumArmJoints; ++j) {
       const JointInfo& joint = model_.joint(kA1 + j);
       const Eigen::Isometry3d frame =
           mount_inv * frames.world_pose[static_cast<std::size_t>(joint.child_link_index)];
-      p[static_cast<std::size_t>(j)] = frame.translation();
-      d[static_cast<std::size_t>(j)] = frame.linear() * joint.axis;
+      m.p[static_cast<std::size_t>(j)] = frame.translation();
+      m.d[static_cast<std::size_t>(j)] = frame.linear() * joint.axis;
     }
     const Eigen::Isometry3d flange_in_mount =
         mount_inv * frames.world_pose[static_cast<std::size_t>(model_.flange_link_)];
-    OpwGeometry g;
-    auto sign_of = [](double v) { return v >= 0.0 ? 1.0 : -1.0; };
+    m.flange = flange_in_mount.translation();
+    flange_rotation = flange_in_mount.linear();
+    return m;
+  }
 
-    // Base frame: z along a1 (the upright sense), origin on a1 level with the mount origin,
-    // x towards the a2 axis.
+  // Base frame: z along a1 (the upright sense), origin on a1 level with the mount origin,
+  // x towards the a2 axis. Sets g.mount_to_base, a1_m and the signs of a1..a3.
+  bool DeriveBaseFrame(const ArmAxes& m, OpwGeometry& g) {
+    const double tol = kGeometryTolerance;
+    const auto& p = m.p;
+    const auto& d = m.d;
     const Eigen::Vector3d z_b = d[0].z() >= 0.0 ? d[0] : Eigen::Vector3d(-d[0]);
-    g.sign[0] = sign_of(d[0].dot(z_b));
+    g.sign[0] = SignOf(d[0].dot(z_b));
     const Eigen::Vector3d origin_b = p[0] - p[0].dot(z_b) * z_b;
     if (std::abs(d[1].dot(z_b)) > tol) return NotOpw(kA2, "a2 is not perpendicular to a1");
     Eigen::Vector3d to_a2 = p[1] - origin_b;
@@ -374,30 +388,22 @@ class RobotModelBuilder {
       x_b = d[1].cross(z_b).normalized();
     }
     const Eigen::Vector3d y_b = z_b.cross(x_b);
-    g.sign[1] = sign_of(d[1].dot(y_b));
+    g.sign[1] = SignOf(d[1].dot(y_b));
     if (std::abs(d[2].dot(y_b)) < 1.0 - tol) return NotOpw(kA3, "a3 is not parallel to a2");
-    g.sign[2] = sign_of(d[2].dot(y_b));
+    g.sign[2] = SignOf(d[2].dot(y_b));
     Eigen::Matrix3d r_b;
     r_b << x_b, y_b, z_b;
     g.mount_to_base = Eigen::Isometry3d::Identity();
     g.mount_to_base.linear() = r_b;
     g.mount_to_base.translation() = origin_b;
+    return true;
+  }
 
-    // Everything in the base frame from here on.
-    std::array<Eigen::Vector3d, kNumArmJoints> pb;
-    std::array<Eigen::Vector3d, kNumArmJoints> db;
-    for (std::size_t j = 0; j < pb.size(); ++j) {
-      pb[j] = r_b.transpose() * (p[j] - origin_b);
-      db[j] = r_b.transpose() * d[j];
-    }
-    const Eigen::Vector3d flange_b = r_b.transpose() * (flange_in_mount.translation() - origin_b);
-    g.c1_m = pb[1].z();
-    const Eigen::Vector3d upper_arm = pb[2] - pb[1];
-    g.c2_m = std::hypot(upper_arm.x(), upper_arm.z());
-    if (g.c2_m < tol) return NotOpw(kA3, "a3 lies on the a2 axis");
-    const double t2_zero = std::atan2(upper_arm.x(), upper_arm.z());
-
-    // Spherical wrist: a4 and a5 meet at the wrist centre, a6 passes through it.
+  // Spherical wrist: a4 and a5 meet at the wrist centre, a6 passes through it (base frame).
+  bool WristCentre(const ArmAxes& b, Eigen::Vector3d& wrist) {
+    const double tol = kGeometryTolerance;
+    const auto& pb = b.p;
+    const auto& db = b.d;
     const Eigen::Vector3d w0 = pb[3] - pb[4];
     const double cross = db[3].dot(db[4]);
     const double denom = 1.0 - cross * cross;
@@ -407,51 +413,82 @@ class RobotModelBuilder {
     const Eigen::Vector3d on4 = pb[3] + s4 * db[3];
     const Eigen::Vector3d on5 = pb[4] + s5 * db[4];
     if ((on4 - on5).norm() > tol) return NotOpw(kA5, "a4 and a5 do not intersect");
-    const Eigen::Vector3d wrist = 0.5 * (on4 + on5);
+    wrist = 0.5 * (on4 + on5);
     const Eigen::Vector3d from6 = wrist - pb[5];
     if ((from6 - from6.dot(db[5]) * db[5]).norm() > tol) {
       return NotOpw(kA6, "a6 misses the a4/a5 wrist centre");
     }
     if (std::abs(db[3].y()) > tol) return NotOpw(kA4, "a4 leaves the plane of a2 and a3");
+    return true;
+  }
 
-    // Forearm: from the a3 axis to the wrist centre; its z along a4.
-    const Eigen::Vector3d forearm = wrist - pb[2];
+  // Forearm (a3 axis to the wrist centre, its z along a4) and the wrist angles at the zero
+  // pose: c3, a2, b, c4, the signs of a4..a6 and the OPW angles t23, t4, t5 at q = 0.
+  bool DeriveForearmAndWrist(const ArmAxes& b, const Eigen::Vector3d& wrist, OpwGeometry& g,
+                             double& t23_zero, double& t4_zero, double& t5_zero) {
+    const double tol = kGeometryTolerance;
+    const auto& db = b.d;
+    const Eigen::Vector3d forearm = wrist - b.p[2];
     const Eigen::Vector3d f4 = forearm.dot(db[3]) >= 0.0 ? db[3] : Eigen::Vector3d(-db[3]);
-    g.sign[3] = sign_of(db[3].dot(f4));
-    const double t23_zero = std::atan2(f4.x(), f4.z());
+    g.sign[3] = SignOf(db[3].dot(f4));
+    t23_zero = std::atan2(f4.x(), f4.z());
     const Eigen::Matrix3d r_forearm = detail::RotY(t23_zero);
     g.c3_m = forearm.dot(r_forearm.col(2));
     g.a2_m = forearm.dot(r_forearm.col(0));
     g.b_m = wrist.y();
-
-    // Wrist angles at the URDF zero pose.
     const Eigen::Vector3d d5 = r_forearm.transpose() * db[4];
     if (std::abs(d5.z()) > tol) return NotOpw(kA5, "a5 is not perpendicular to a4");
     g.sign[4] = d5.y() >= -tol ? 1.0 : -1.0;
     const Eigen::Vector3d e5 = g.sign[4] * d5;
-    const double t4_zero = std::atan2(-e5.x(), e5.y());
+    t4_zero = std::atan2(-e5.x(), e5.y());
     const Eigen::Matrix3d r_4 = r_forearm * detail::RotZ(t4_zero);
     if (std::abs((r_4.transpose() * db[5]).y()) > tol) {
       return NotOpw(kA6, "a6 is not perpendicular to a5");
     }
-    const Eigen::Vector3d to_flange = flange_b - wrist;
+    const Eigen::Vector3d to_flange = b.flange - wrist;
     Eigen::Vector3d f6 = to_flange.dot(db[5]) >= 0.0 ? db[5] : Eigen::Vector3d(-db[5]);
     g.c4_m = to_flange.dot(f6);
     if (g.c4_m <= tol && (r_4.transpose() * f6).z() < 0.0) f6 = -f6;
     if ((to_flange - g.c4_m * f6).norm() > tol) {
       return NotOpw(kA6, "the flange origin is off the a6 axis");
     }
-    g.sign[5] = sign_of(db[5].dot(f6));
+    g.sign[5] = SignOf(db[5].dot(f6));
     const Eigen::Vector3d f6_in_4 = r_4.transpose() * f6;
-    const double t5_zero = std::atan2(f6_in_4.x(), f6_in_4.z());
+    t5_zero = std::atan2(f6_in_4.x(), f6_in_4.z());
+    return true;
+  }
 
+  // Reads the OPW parameters off the URDF zero pose, in the a1 parent (mount) frame.
+  bool DeriveOpw() {
+    Eigen::Matrix3d flange_rotation = Eigen::Matrix3d::Identity();
+    const ArmAxes m = AxesInMount(flange_rotation);
+    OpwGeometry g;
+    if (!DeriveBaseFrame(m, g)) return false;
+    // Everything in the base frame from here on.
+    const Eigen::Matrix3d r_b = g.mount_to_base.linear();
+    const Eigen::Vector3d origin_b = g.mount_to_base.translation();
+    ArmAxes b;
+    for (std::size_t j = 0; j < b.p.size(); ++j) {
+      b.p[j] = r_b.transpose() * (m.p[j] - origin_b);
+      b.d[j] = r_b.transpose() * m.d[j];
+    }
+    b.flange = r_b.transpose() * (m.flange - origin_b);
+    g.c1_m = b.p[1].z();
+    const Eigen::Vector3d upper_arm = b.p[2] - b.p[1];
+    g.c2_m = std::hypot(upper_arm.x(), upper_arm.z());
+    if (g.c2_m < kGeometryTolerance) return NotOpw(kA3, "a3 lies on the a2 axis");
+    const double t2_zero = std::atan2(upper_arm.x(), upper_arm.z());
+    Eigen::Vector3d wrist = Eigen::Vector3d::Zero();
+    if (!WristCentre(b, wrist)) return false;
+    double t23_zero = 0.0, t4_zero = 0.0, t5_zero = 0.0;
+    if (!DeriveForearmAndWrist(b, wrist, g, t23_zero, t4_zero, t5_zero)) return false;
     g.offset_rad = {0.0, t2_zero, t23_zero - t2_zero, t4_zero, t5_zero, 0.0};
     for (double& offset : g.offset_rad) offset += 0.0;  // no "-0" in printed parameters
     ArmJointVector t_zero;
     t_zero << g.offset_rad[0], g.offset_rad[1], g.offset_rad[2], g.offset_rad[3], g.offset_rad[4],
         g.offset_rad[5];
-    g.opw_flange_to_flange = detail::OpwForward(g, t_zero).linear().transpose() * r_b.transpose() *
-                             flange_in_mount.linear();
+    g.opw_flange_to_flange =
+        detail::OpwForward(g, t_zero).linear().transpose() * r_b.transpose() * flange_rotation;
     model_.opw_ = g;
     return true;
   }

@@ -55,6 +55,10 @@ Probe MakeProbe(const std::string& name, const std::string& geom, double mold_de
   head << head_in.rdbuf();
   std::string head_text = head.str();
   head_text.replace(head_text.find("mjcf: afp.xml"), 13, "mjcf: " + name + ".xml");
+  // The probe makes no process contact: every contact with the part counts.
+  const std::string roller = "  - {head: roller, with: [preform, mold]}\n";
+  head_text.replace(head_text.find(roller), roller.size(), "");
+  head_text.replace(head_text.find("allowed_contacts:\n"), 18, "allowed_contacts: []\n");
   std::ofstream(dir / (name + ".yaml")) << head_text;
   std::ofstream(dir / (name + ".xml"))
       << "<mujoco model=\"" << name << "\"><worldbody><body name=\"head\">" << geom

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 #include <memory>
+#include <optional>
 
 #include "stitchsim/common/files.h"
 
@@ -30,20 +31,18 @@ Eigen::Isometry3d PoseOf(const mjtNum* pos, const mjtNum* quat) {
   return t;
 }
 
-}  // namespace
+using ModelPtr = std::unique_ptr<mjModel, ModelDeleter>;
 
-std::vector<MjcfGeom> LoadMjcfGeoms(const std::filesystem::path& cell_mjcf,
-                                    const std::filesystem::path& head_mjcf,
-                                    const std::vector<std::string>& link_names,
-                                    DiagnosticSink& sink, bool& ok) {
-  ok = false;
-  std::vector<MjcfGeom> out;
+// The cell model with the head's worldbody inserted at its marker (the head's bodies under
+// "stitchsim_head_root"), compiled by MuJoCo; null (and a diagnostic) on failure.
+ModelPtr CompileCellWithHead(const std::filesystem::path& cell_mjcf,
+                             const std::filesystem::path& head_mjcf, DiagnosticSink& sink) {
   const auto cell = ReadFile(cell_mjcf);
   const auto head = ReadFile(head_mjcf);
   if (!cell || !head) {
     sink.Error("collision-mjcf", {(!cell ? cell_mjcf : head_mjcf).string(), 0, 0},
                "cannot read MJCF file");
-    return out;
+    return nullptr;
   }
   const std::string inner = WorldbodyInner(*head);
   std::string text = *cell;
@@ -52,7 +51,7 @@ std::vector<MjcfGeom> LoadMjcfGeoms(const std::filesystem::path& cell_mjcf,
   if (inner.empty() || at == std::string::npos) {
     sink.Error("collision-mjcf", {head_mjcf.string(), 0, 0},
                "head MJCF has no <worldbody> content or the cell lacks the head marker");
-    return out;
+    return nullptr;
   }
   // Tag the head's bodies so its geoms can be told apart after compilation.
   text.replace(at, marker.size(), "<body name=\"stitchsim_head_root\">" + inner + "</body>");
@@ -61,70 +60,91 @@ std::vector<MjcfGeom> LoadMjcfGeoms(const std::filesystem::path& cell_mjcf,
   const char* name = "stitchsim_collision.xml";
   if (mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(text.size())) != 0) {
     sink.Error("collision-mjcf", {cell_mjcf.string(), 0, 0}, "MuJoCo VFS is full");
-    return out;
+    return nullptr;
   }
   std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), name)], text.data(), text.size());
   char error[1024] = {0};
-  std::unique_ptr<mjModel, ModelDeleter> m(mj_loadXML(name, vfs.get(), error, sizeof(error)));
+  ModelPtr m(mj_loadXML(name, vfs.get(), error, sizeof(error)));
   mj_deleteVFS(vfs.get());
   if (!m) {
     sink.Error("collision-mjcf", {cell_mjcf.string(), 0, 0},
                std::string("MuJoCo could not compile the cell + head model: ") + error);
-    return out;
   }
-  auto body_name = [&](int b) {
-    const char* n = mj_id2name(m.get(), mjOBJ_BODY, b);
-    return std::string(n != nullptr ? n : "");
-  };
+  return m;
+}
+
+std::string BodyName(const mjModel& m, int b) {
+  const char* n = mj_id2name(&m, mjOBJ_BODY, b);
+  return std::string(n != nullptr ? n : "");
+}
+
+// Geom `g`'s name, bodies and pose in the frame of the nearest body that is a URDF link.
+MjcfGeom PlacedGeom(const mjModel& m, int g, const std::vector<std::string>& link_names) {
   auto is_link = [&](const std::string& n) {
     return std::find(link_names.begin(), link_names.end(), n) != link_names.end();
   };
+  MjcfGeom geom;
+  const char* gname = mj_id2name(&m, mjOBJ_GEOM, g);
+  geom.name = gname != nullptr ? gname : "geom_" + std::to_string(g);
+  const int body = m.geom_bodyid[g];
+  geom.body = BodyName(m, body);
+  Eigen::Isometry3d pose = PoseOf(m.geom_pos + 3 * g, m.geom_quat + 4 * g);
+  int b = body;
+  while (b != 0 && !is_link(BodyName(m, b))) {
+    if (BodyName(m, b) == "stitchsim_head_root") geom.in_head = true;
+    pose = PoseOf(m.body_pos + 3 * b, m.body_quat + 4 * b) * pose;
+    b = m.body_parentid[b];
+  }
+  geom.link = b == 0 ? "world" : BodyName(m, b);
+  for (int t = body; t != 0; t = m.body_parentid[t]) {
+    if (m.body_parentid[t] == 0) geom.top_body = BodyName(m, t);
+  }
+  geom.pose_in_link = pose;
+  geom.size = Eigen::Vector3d(m.geom_size[3 * g], m.geom_size[3 * g + 1], m.geom_size[3 * g + 2]);
+  return geom;
+}
+
+// The collision shape of a MuJoCo geom type; nullopt for a type FCL is not given.
+std::optional<MjcfShape> ShapeOf(int mujoco_type) {
+  switch (mujoco_type) {
+    case mjGEOM_BOX:
+      return MjcfShape::kBox;
+    case mjGEOM_SPHERE:
+      return MjcfShape::kSphere;
+    case mjGEOM_CAPSULE:
+      return MjcfShape::kCapsule;
+    case mjGEOM_CYLINDER:
+      return MjcfShape::kCylinder;
+    case mjGEOM_PLANE:
+      return MjcfShape::kPlane;
+    default:
+      return std::nullopt;
+  }
+}
+
+}  // namespace
+
+std::vector<MjcfGeom> LoadMjcfGeoms(const std::filesystem::path& cell_mjcf,
+                                    const std::filesystem::path& head_mjcf,
+                                    const std::vector<std::string>& link_names,
+                                    DiagnosticSink& sink, bool& ok) {
+  ok = false;
+  std::vector<MjcfGeom> out;
+  const ModelPtr m = CompileCellWithHead(cell_mjcf, head_mjcf, sink);
+  if (!m) return out;
   bool good = true;
   for (int g = 0; g < m->ngeom; ++g) {
-    MjcfGeom geom;
-    const char* gname = mj_id2name(m.get(), mjOBJ_GEOM, g);
-    geom.name = gname != nullptr ? gname : "geom_" + std::to_string(g);
-    const int body = m->geom_bodyid[g];
-    geom.body = body_name(body);
-    Eigen::Isometry3d pose = PoseOf(m->geom_pos + 3 * g, m->geom_quat + 4 * g);
-    int b = body;
-    while (b != 0 && !is_link(body_name(b))) {
-      if (body_name(b) == "stitchsim_head_root") geom.in_head = true;
-      pose = PoseOf(m->body_pos + 3 * b, m->body_quat + 4 * b) * pose;
-      b = m->body_parentid[b];
+    MjcfGeom geom = PlacedGeom(*m, g, link_names);
+    const std::optional<MjcfShape> shape = ShapeOf(m->geom_type[g]);
+    if (!shape) {
+      sink.Error("collision-unsupported-geom", {head_mjcf.string(), 0, 0},
+                 "geom '" + geom.name + "' has a MuJoCo type (" + std::to_string(m->geom_type[g]) +
+                     ") the collision checker does not map to FCL");
+      good = false;
+      continue;
     }
-    geom.link = b == 0 ? "world" : body_name(b);
-    for (int t = body; t != 0; t = m->body_parentid[t]) {
-      if (m->body_parentid[t] == 0) geom.top_body = body_name(t);
-    }
-    geom.pose_in_link = pose;
-    geom.size =
-        Eigen::Vector3d(m->geom_size[3 * g], m->geom_size[3 * g + 1], m->geom_size[3 * g + 2]);
-    switch (m->geom_type[g]) {
-      case mjGEOM_BOX:
-        geom.shape = MjcfShape::kBox;
-        break;
-      case mjGEOM_SPHERE:
-        geom.shape = MjcfShape::kSphere;
-        break;
-      case mjGEOM_CAPSULE:
-        geom.shape = MjcfShape::kCapsule;
-        break;
-      case mjGEOM_CYLINDER:
-        geom.shape = MjcfShape::kCylinder;
-        break;
-      case mjGEOM_PLANE:
-        geom.shape = MjcfShape::kPlane;
-        break;
-      default:
-        sink.Error("collision-unsupported-geom", {head_mjcf.string(), 0, 0},
-                   "geom '" + geom.name + "' has a MuJoCo type (" +
-                       std::to_string(m->geom_type[g]) +
-                       ") the collision checker does not map to FCL");
-        good = false;
-        continue;
-    }
-    if (geom.shape == MjcfShape::kPlane && b != 0) {
+    geom.shape = *shape;
+    if (geom.shape == MjcfShape::kPlane && geom.link != "world") {
       sink.Error("collision-unsupported-geom", {head_mjcf.string(), 0, 0},
                  "geom '" + geom.name + "' is a plane on a body that is not the world");
       good = false;

@@ -53,6 +53,19 @@ struct HeadEnvelope {
   double radius_mm = 0.0;
 };
 
+/// A contact the process needs (`allowed_contacts:`, docs/collision.md "Allowed contacts"):
+/// the head geoms named `head` (`*` matches any run of characters) against the part's preform
+/// and / or mold slab. The collision world checks that each pattern names a geom of the head's
+/// MJCF; every contact not allowed here counts.
+struct AllowedContact {
+  std::string head;      ///< geom name pattern in the head MJCF ("needle_catcher", "needle_*")
+  bool preform = false;  ///< may touch the preform slab
+  bool mold = false;     ///< may touch the mold slab
+  SourceLocation where;  ///< the entry in the head file
+  /// True when `geom_name` matches the pattern.
+  bool Matches(const std::string& geom_name) const;
+};
+
 struct HeadSpec {
   std::filesystem::path file;
   std::string name;
@@ -64,8 +77,9 @@ struct HeadSpec {
   std::vector<NeedleSpec> needles;
   StitchProcessSpec stitch;
   AfpSpec afp;
-  std::optional<HeadEnvelope> envelope;  ///< absent: the head spec gives none
-  RuleLimits limits;                     ///< the spec's `limits`, over the table's defaults
+  std::optional<HeadEnvelope> envelope;          ///< absent: the head spec gives none
+  RuleLimits limits;                             ///< the spec's `limits`, over the table's defaults
+  std::vector<AllowedContact> allowed_contacts;  ///< absent: none (every contact counts)
   bool IsStitching() const { return kind != HeadKind::kAfp; }
 };
 

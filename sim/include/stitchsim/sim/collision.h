@@ -1,9 +1,9 @@
 #pragma once
 // Interference checking with FCL: the robot (arm links, carriage), the head, the cell (rail,
 // rotator, table, floor), the mold, the preform and the constraints. Contacts the process
-// needs are allowed by name per head (needles in the preform, the AFP roller on the laminate,
-// the RS566 table under the preform); everything else counts. A geometry pair FCL cannot
-// check is an error, never "clear".
+// needs are listed in the head file (`allowed_contacts`: needles in the preform, the AFP
+// roller on the laminate, the RS566 table under the preform); everything else counts. A
+// geometry pair FCL cannot check is an error, never "clear".
 
 #include <Eigen/Geometry>
 #include <memory>
@@ -51,22 +51,35 @@ struct CollisionOptions {
   bool naive_baseline = false;
 };
 
-/// The collision world of one scene (immutable geometry; per-query state inside). The scene
-/// and the robot model it was made from must outlive it.
+class CollisionModel;  // immutable: bodies, geometry, pair filter (sim/src/detail/)
+class CollisionData;   // one caller's per-query state
+
+/// The collision world of one scene: a shared, immutable model and this caller's per-query
+/// data (docs/collision.md, "Model and data"). The scene and the robot model it was made from
+/// must outlive it. One world per thread; Share() makes another on the same model.
 class CollisionWorld {
  public:
-  virtual ~CollisionWorld() = default;
+  ~CollisionWorld();
   /// Builds FCL objects for the cell, the head and the part; diagnostics on failure.
   static std::unique_ptr<CollisionWorld> Create(const scene::Scene& scene, const RobotModel& robot,
                                                 DiagnosticSink& sink);
+  /// Another world on the same model with its own per-query data, for another thread. Make
+  /// it before other threads query (FCL rewrites each shared geometry's local box, with the
+  /// same values, when it makes an object).
+  std::unique_ptr<CollisionWorld> Share() const;
   /// Checks the cell at joints `q` (model order).
-  virtual CollisionResult Check(const JointVector& q, const CollisionOptions& options) = 0;
+  CollisionResult Check(const JointVector& q, const CollisionOptions& options);
   /// Largest distance any point of a moving body travels between `a` and `b` (metres); the
   /// executor bounds its step with it so no contact slips between samples.
-  virtual double MaxPointTravel(const JointVector& a, const JointVector& b) const = 0;
+  double MaxPointTravel(const JointVector& a, const JointVector& b) const;
   /// Names of the bodies, in a fixed order (the trace's body table, CellDescription::bodies);
   /// every name in a CollisionResult is one of them.
-  virtual std::vector<std::string> BodyNames() const = 0;
+  std::vector<std::string> BodyNames() const;
+
+ private:
+  explicit CollisionWorld(std::shared_ptr<const CollisionModel> model);
+  std::shared_ptr<const CollisionModel> model_;
+  std::unique_ptr<CollisionData> data_;
 };
 
 }  // namespace stitchsim::sim
