@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "stitchsim/geom/rotation.h"
-#include "stitchsim/program/tool_pose.h"
 #include "stitchsim/program/modal_state.h"
 #include "stitchsim/program/reader.h"
+#include "stitchsim/program/tool_pose.h"
 
 namespace stitchsim::sim::detail {
 namespace {

@@ -27,7 +27,8 @@ bool Rule::Worse(FindingSeverity severity, double value, double limit, const Fin
 }
 
 void Rule::Record(FindingSeverity severity, double value, double limit, int line, long stitch,
-                  const std::string& subject, std::string message, const trace::TraceSample* sample) {
+                  const std::string& subject, std::string message,
+                  const trace::TraceSample* sample) {
   // One finding per line: find the line's finding, if it was reported already.
   std::size_t index = static_cast<std::size_t>(-1);
   bool seen = false;
