@@ -1,5 +1,6 @@
 #include "stitchsim/geom/naca.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cassert>
@@ -77,6 +78,18 @@ bool ParseFiveDigit(std::string_view code, NacaSection& s, std::string& error) {
   return true;
 }
 
+// The thickness distribution is 5 t (0.2969 sqrt(x) + polynomial(x)).
+constexpr double kSqrtCoefficient = 0.2969;
+struct Polynomial {
+  double value;
+  double derivative;
+};
+Polynomial ThicknessPolynomial(double x, TrailingEdge trailing_edge) {
+  const double a4 = trailing_edge == TrailingEdge::kClosed ? 0.1036 : 0.1015;
+  return {x * (-0.1260 + x * (-0.3516 + x * (0.2843 - a4 * x))),
+          -0.1260 + x * (-0.7032 + x * (0.8529 - 4.0 * a4 * x))};
+}
+
 CamberPoint FiveDigitCamber(const NacaSection& s, double x) {
   const double m = s.m;
   const double k = s.k1 / 6.0 * s.camber_scale;
@@ -85,6 +98,7 @@ CamberPoint FiveDigitCamber(const NacaSection& s, double x) {
     if (x < m) {
       c.y = k * (x * x * x - 3 * m * x * x + m * m * (3 - m) * x);
       c.slope = k * (3 * x * x - 6 * m * x + m * m * (3 - m));
+      c.slope_rate = k * (6 * x - 6 * m);
     } else {
       c.y = k * m * m * m * (1 - x);
       c.slope = -k * m * m * m;
@@ -97,6 +111,7 @@ CamberPoint FiveDigitCamber(const NacaSection& s, double x) {
   const double a = x < m ? 1.0 : r;  // the cubic's weight on each side of m
   c.y = k * (a * d * d * d - tail * x + m * m * m);
   c.slope = k * (3 * a * d * d - tail);
+  c.slope_rate = k * 6 * a * d;
   return c;
 }
 
@@ -128,10 +143,9 @@ std::optional<NacaSection> ParseNaca(std::string_view code, std::string& error) 
 }
 
 double NacaHalfThickness(const NacaSection& section, double x, TrailingEdge trailing_edge) {
-  const double a4 = trailing_edge == TrailingEdge::kClosed ? 0.1036 : 0.1015;
   x = std::clamp(x, 0.0, 1.0);
   return 5.0 * section.thickness *
-         (0.2969 * std::sqrt(x) + x * (-0.1260 + x * (-0.3516 + x * (0.2843 - a4 * x))));
+         (kSqrtCoefficient * std::sqrt(x) + ThicknessPolynomial(x, trailing_edge).value);
 }
 
 CamberPoint NacaCamber(const NacaSection& section, double x) {
@@ -144,10 +158,12 @@ CamberPoint NacaCamber(const NacaSection& section, double x) {
   if (x < p) {
     c.y = m / (p * p) * (2 * p * x - x * x);
     c.slope = 2 * m / (p * p) * (p - x);
+    c.slope_rate = -2 * m / (p * p);
   } else {
     const double q = (1 - p) * (1 - p);
     c.y = m / q * ((1 - 2 * p) + 2 * p * x - x * x);
     c.slope = 2 * m / q * (p - x);
+    c.slope_rate = -2 * m / q;
   }
   return c;
 }
@@ -175,10 +191,31 @@ std::vector<double> CosineSpacing(int n) {
 }
 
 Eigen::Vector2d NacaContourPoint(const NacaSection& section, double s, TrailingEdge trailing_edge) {
+  return NacaContour(section, s, trailing_edge).point;
+}
+
+ContourPoint NacaContour(const NacaSection& section, double s, TrailingEdge trailing_edge) {
+  // With x = cos^2(pi s), sqrt(x) = |cos(pi s)|: the signed half thickness
+  // h = 5 t (0.2969 cos(pi s) +- polynomial(x)) (+ upper, - lower) is smooth at the nose.
   s = std::clamp(s, 0.0, 1.0);
-  const double x = 0.5 * (1.0 + std::cos(2.0 * kPi * s));
-  const SurfacePair pair = NacaSurfaceAt(section, x, trailing_edge);
-  return s <= 0.5 ? pair.upper : pair.lower;
+  const double cos_s = std::cos(kPi * s);
+  const double x = cos_s * cos_s;
+  const double x_s = -kPi * std::sin(2.0 * kPi * s);
+  const double side = s <= 0.5 ? 1.0 : -1.0;
+  const Polynomial rest = ThicknessPolynomial(x, trailing_edge);
+  const double five_t = 5.0 * section.thickness;
+  const double h = five_t * (kSqrtCoefficient * cos_s + side * rest.value);
+  const double h_s =
+      five_t * (-kSqrtCoefficient * kPi * std::sin(kPi * s) + side * rest.derivative * x_s);
+  const CamberPoint c = NacaCamber(section, x);
+  const double theta = std::atan(c.slope);
+  const double theta_s = c.slope_rate * x_s / (1.0 + c.slope * c.slope);
+  const double sn = std::sin(theta);
+  const double cs = std::cos(theta);
+  ContourPoint out;
+  out.point = {x - h * sn, c.y + h * cs};
+  out.derivative = {x_s - h_s * sn - h * cs * theta_s, c.slope * x_s + h_s * cs - h * sn * theta_s};
+  return out;
 }
 
 std::optional<Wing> Wing::Make(const WingSpec& spec, std::string& error) {
@@ -211,27 +248,47 @@ std::optional<Wing> Wing::Make(const WingSpec& spec, std::string& error) {
   return Wing(spec, std::move(*root), std::move(*tip));
 }
 
-Eigen::Vector3d Wing::SectionPoint(bool tip, double s) const {
+Eigen::Vector3d Wing::SectionPoint(bool tip, double s) const { return PlacedSection(tip, s).point; }
+
+Wing::Placed Wing::PlacedSection(bool tip, double s) const {
   const NacaSection& section = tip ? tip_ : root_;
   const double chord = tip ? spec_.tip_chord_mm : spec_.root_chord_mm;
-  const Eigen::Vector2d p = chord * NacaContourPoint(section, s, spec_.trailing_edge);
+  const ContourPoint contour = NacaContour(section, s, spec_.trailing_edge);
   // Washout about the quarter chord: (x - c/4, z) turned by +washout in the (x, z) plane,
   // which lowers the leading edge (x < c/4) and raises the trailing edge: nose down.
   const double twist = tip ? spec_.washout_rad : 0.0;
-  const double quarter = 0.25 * chord;
   const double c = std::cos(twist);
   const double sn = std::sin(twist);
-  const double dx = p.x() - quarter;
-  const Eigen::Vector2d twisted(quarter + c * dx - sn * p.y(), sn * dx + c * p.y());
-  if (!tip) return {twisted.x(), 0.0, twisted.y()};
-  const double span = spec_.span_mm;
-  return {twisted.x() + span * std::tan(spec_.sweep_rad), span,
-          twisted.y() + span * std::tan(spec_.dihedral_rad)};
+  const auto turn = [&](const Eigen::Vector2d& v) {
+    return Eigen::Vector3d(c * v.x() - sn * v.y(), 0.0, sn * v.x() + c * v.y());
+  };
+  const Eigen::Vector3d quarter(0.25 * chord, 0.0, 0.0);
+  const double span = tip ? spec_.span_mm : 0.0;
+  const Eigen::Vector3d offset(span * std::tan(spec_.sweep_rad), span,
+                               span * std::tan(spec_.dihedral_rad));
+  const Eigen::Vector2d p = chord * contour.point - Eigen::Vector2d(0.25 * chord, 0.0);
+  return {offset + quarter + turn(p), chord * turn(contour.derivative)};
 }
 
 Eigen::Vector3d Wing::Point(double s, double eta) const {
   eta = std::clamp(eta, 0.0, 1.0);
   return (1.0 - eta) * SectionPoint(false, s) + eta * SectionPoint(true, s);
+}
+
+WingDerivatives Wing::Derivatives(double s, double eta) const {
+  eta = std::clamp(eta, 0.0, 1.0);
+  const Placed root = PlacedSection(false, s);
+  const Placed tip = PlacedSection(true, s);
+  WingDerivatives d;
+  d.point = (1.0 - eta) * root.point + eta * tip.point;
+  d.d_ds = (1.0 - eta) * root.d_ds + eta * tip.d_ds;
+  d.d_deta = tip.point - root.point;
+  return d;
+}
+
+Eigen::Vector3d Wing::Normal(double s, double eta) const {
+  const WingDerivatives d = Derivatives(std::clamp(s, 1e-6, 1.0 - 1e-6), eta);
+  return d.d_deta.cross(d.d_ds).normalized();
 }
 
 WingGrid SampleWing(const Wing& wing, int count_s, int count_eta) {

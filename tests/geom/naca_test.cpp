@@ -215,6 +215,36 @@ TEST(NacaSurface, ContourIsSmoothThroughTheLeadingEdge) {
   }
 }
 
+TEST(NacaSurface, ContourAgreesWithTheStationFormula) {
+  // NacaContour works in s (sqrt(x) = |cos(pi s)|); NacaSurfaceAt in x: one answer.
+  for (const char* code : {"0012", "2412", "23014", "23112"}) {
+    const NacaSection sec = Parse(code);
+    for (TrailingEdge te : {TrailingEdge::kOpen, TrailingEdge::kClosed}) {
+      for (int i = 0; i <= 100; ++i) {
+        const double s = i / 100.0;
+        const SurfacePair pair = NacaSurfaceAt(sec, 0.5 * (1 + std::cos(2 * kPi * s)), te);
+        const Eigen::Vector2d expected = s <= 0.5 ? pair.upper : pair.lower;
+        EXPECT_LT((NacaContourPoint(sec, s, te) - expected).norm(), 1e-12) << code << " " << s;
+      }
+    }
+  }
+}
+
+TEST(NacaSurface, ContourDerivativeMatchesDifferences) {
+  for (const char* code : {"0012", "2412", "23014", "23112", "25012"}) {
+    const NacaSection sec = Parse(code);
+    const double h = 1e-6;
+    for (int i = 1; i < 100; ++i) {
+      const double s = i / 100.0;
+      const Eigen::Vector2d fd = (NacaContourPoint(sec, s + h, TrailingEdge::kOpen) -
+                                  NacaContourPoint(sec, s - h, TrailingEdge::kOpen)) /
+                                 (2 * h);
+      const Eigen::Vector2d d = NacaContour(sec, s, TrailingEdge::kOpen).derivative;
+      EXPECT_LT((d - fd).norm(), 1e-6) << code << " s " << s;
+    }
+  }
+}
+
 TEST(NacaSpacing, CosineStations) {
   const std::vector<double> x = CosineSpacing(5);
   ASSERT_EQ(x.size(), 5u);
@@ -283,7 +313,7 @@ TEST(NacaWing, EndSectionsAreTheScaledTwistedSweptSections) {
   for (int i = 0; i <= 40; ++i) {
     const double s = i / 40.0;
     const Eigen::Vector2d r2 = spec.root_chord_mm * NacaContourPoint(root, s, spec.trailing_edge);
-    EXPECT_TRUE(wing.Point(s, 0.0).isApprox(Eigen::Vector3d(r2.x(), 0, r2.y()), 1e-13));
+    EXPECT_LT((wing.Point(s, 0.0) - Eigen::Vector3d(r2.x(), 0, r2.y())).norm(), 1e-9) << s;
     const Eigen::Vector2d t2 = spec.tip_chord_mm * NacaContourPoint(tip, s, spec.trailing_edge);
     const Eigen::Vector3d expected =
         offset + quarter + washout * (Eigen::Vector3d(t2.x(), 0, t2.y()) - quarter);
@@ -299,6 +329,34 @@ TEST(NacaWing, EndSectionsAreTheScaledTwistedSweptSections) {
               offset.x() + 0.25 * spec.tip_chord_mm * (1 - std::cos(spec.washout_rad)), 1e-9);
   // Twist keeps the chord.
   EXPECT_NEAR((wing.Point(0.0, 1.0) - wing.Point(0.5, 1.0)).norm(), spec.tip_chord_mm, 1e-9);
+}
+
+TEST(NacaWing, DerivativesAndOutwardNormal) {
+  WingSpec spec = SeedWing();
+  spec.sweep_rad = 12.0 * kDeg;
+  spec.dihedral_rad = 4.0 * kDeg;
+  spec.washout_rad = 3.0 * kDeg;
+  const Wing wing = MakeOrFail(spec);
+  const double h = 1e-6;
+  for (double eta : {0.0, 0.3, 1.0}) {
+    for (double s : {0.05, 0.25, 0.49, 0.5, 0.51, 0.75, 0.95}) {
+      const WingDerivatives d = wing.Derivatives(s, eta);
+      EXPECT_TRUE(d.point.isApprox(wing.Point(s, eta), 1e-14));
+      const Eigen::Vector3d fd_s = (wing.Point(s + h, eta) - wing.Point(s - h, eta)) / (2 * h);
+      EXPECT_LT((d.d_ds - fd_s).norm(), 1e-5 * d.d_ds.norm()) << s << " " << eta;
+      const double e0 = std::max(0.0, eta - h);
+      const double e1 = std::min(1.0, eta + h);
+      const Eigen::Vector3d fd_eta = (wing.Point(s, e1) - wing.Point(s, e0)) / (e1 - e0);
+      EXPECT_LT((d.d_deta - fd_eta).norm(), 1e-5 * d.d_deta.norm()) << s << " " << eta;
+      const Eigen::Vector3d n = wing.Normal(s, eta);
+      EXPECT_NEAR(n.norm(), 1.0, 1e-12);
+      EXPECT_NEAR(n.dot(d.d_ds.normalized()), 0.0, 1e-12);
+      EXPECT_NEAR(n.dot(d.d_deta.normalized()), 0.0, 1e-12);
+    }
+    EXPECT_GT(wing.Normal(0.25, eta).z(), 0.9);   // upper surface: up
+    EXPECT_LT(wing.Normal(0.75, eta).z(), -0.9);  // lower surface: down
+    EXPECT_LT(wing.Normal(0.5, eta).x(), -0.9);   // nose: forward
+  }
 }
 
 TEST(NacaWing, GridSamplesTheLoft) {

@@ -41,6 +41,7 @@ double NacaHalfThickness(const NacaSection& section, double x, TrailingEdge trai
 struct CamberPoint {
   double y = 0.0;
   double slope = 0.0;
+  double slope_rate = 0.0;  ///< d^2 y_c / dx^2
 };
 CamberPoint NacaCamber(const NacaSection& section, double x);
 
@@ -62,6 +63,21 @@ std::vector<double> CosineSpacing(int n);
 /// trailing edge, s = 0.5 the leading edge, s = 1 the lower trailing edge; the station is
 /// x = (1 + cos(2 pi s)) / 2, so equal steps in s are cosine spaced in x.
 Eigen::Vector2d NacaContourPoint(const NacaSection& section, double s, TrailingEdge trailing_edge);
+
+/// A contour point (chord fractions) and its derivative with respect to s.
+struct ContourPoint {
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();
+  Eigen::Vector2d derivative = Eigen::Vector2d::Zero();  ///< d point / ds; zero at s = 0, 1
+};
+/// NacaContourPoint with its s derivative (smooth through the leading edge).
+ContourPoint NacaContour(const NacaSection& section, double s, TrailingEdge trailing_edge);
+
+/// A point of the wing and its partial derivatives (mm per unit s or eta).
+struct WingDerivatives {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d d_ds = Eigen::Vector3d::Zero();
+  Eigen::Vector3d d_deta = Eigen::Vector3d::Zero();
+};
 
 /// The wing as given (lengths mm, angles rad). Frame: x aft along the root chord, y along
 /// the span, z up; the root leading edge at the origin. Sections stay streamwise (parallel
@@ -93,8 +109,18 @@ class Wing {
   Eigen::Vector3d SectionPoint(bool tip, double s) const;
   /// The loft at (s, eta): (1 - eta) root(s) + eta tip(s); s, eta in [0, 1].
   Eigen::Vector3d Point(double s, double eta) const;
+  /// Point(s, eta) with its partial derivatives.
+  WingDerivatives Derivatives(double s, double eta) const;
+  /// Unit outward normal (d/deta x d/ds); s is kept 1e-6 inside (0, 1), where the trailing
+  /// edge's crease leaves the normal undefined.
+  Eigen::Vector3d Normal(double s, double eta) const;
 
  private:
+  struct Placed {
+    Eigen::Vector3d point;
+    Eigen::Vector3d d_ds;
+  };
+  Placed PlacedSection(bool tip, double s) const;
   Wing(const WingSpec& spec, NacaSection root, NacaSection tip)
       : spec_(spec), root_(std::move(root)), tip_(std::move(tip)) {}
   WingSpec spec_;
