@@ -190,6 +190,20 @@ std::vector<double> CosineSpacing(int n) {
   return x;
 }
 
+std::vector<Eigen::Vector2d> NacaCoordinates(const NacaSection& section, int stations_per_side,
+                                             TrailingEdge trailing_edge) {
+  const std::vector<double> x = CosineSpacing(stations_per_side);
+  std::vector<Eigen::Vector2d> points;
+  points.reserve(2 * x.size() - 1);
+  for (auto it = x.rbegin(); it != x.rend(); ++it) {
+    points.push_back(NacaSurfaceAt(section, *it, trailing_edge).upper);
+  }
+  for (std::size_t i = 1; i < x.size(); ++i) {
+    points.push_back(NacaSurfaceAt(section, x[i], trailing_edge).lower);
+  }
+  return points;
+}
+
 Eigen::Vector2d NacaContourPoint(const NacaSection& section, double s, TrailingEdge trailing_edge) {
   return NacaContour(section, s, trailing_edge).point;
 }

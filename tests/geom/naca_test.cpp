@@ -92,6 +92,33 @@ TEST(NacaThickness, PublishedValuesAndTrailingEdges) {
   EXPECT_NEAR(2 * peak, 0.12, 2e-4);
 }
 
+// The surface height at surface abscissa x (not camber station), by bisection on the station.
+double OrdinateAt(const NacaSection& s, double x, bool upper) {
+  double lo = 0.0;
+  double hi = 1.0;
+  for (int i = 0; i < 100; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    const SurfacePair p = NacaSurfaceAt(s, mid, TrailingEdge::kOpen);
+    ((upper ? p.upper : p.lower).x() < x ? lo : hi) = mid;
+  }
+  const SurfacePair p = NacaSurfaceAt(s, lo, TrailingEdge::kOpen);
+  return (upper ? p.upper : p.lower).y();
+}
+
+TEST(NacaSurface, Naca23012MatchesPublishedOrdinates) {
+  // Abbott and von Doenhoff, Appendix I, NACA 23012, per cent chord (rounded to 0.01 %).
+  struct Row {
+    double x, upper, lower;
+  };
+  const Row rows[] = {{2.5, 3.61, -1.71}, {5, 4.91, -2.26},  {15, 7.19, -3.50}, {30, 7.55, -4.46},
+                      {50, 6.41, -4.17},  {80, 3.08, -2.16}, {95, 0.92, -0.70}, {100, 0.13, -0.13}};
+  const NacaSection s = Parse("23012");
+  for (const Row& r : rows) {
+    EXPECT_NEAR(100 * OrdinateAt(s, r.x / 100, true), r.upper, 0.03) << r.x;
+    EXPECT_NEAR(100 * OrdinateAt(s, r.x / 100, false), r.lower, 0.03) << r.x;
+  }
+}
+
 TEST(NacaThickness, LeadingEdgeRadiusMatchesTheSquareRootTerm) {
   // Near the nose y_t^2 ~ 2 r x: the osculating circle of radius r = 1.1019 t^2.
   for (const char* code : {"0012", "23014", "2406"}) {
@@ -256,6 +283,19 @@ TEST(NacaSpacing, CosineStations) {
   for (std::size_t i = 1; i < many.size(); ++i) EXPECT_GT(many[i], many[i - 1]);
   // Denser at the nose and the trailing edge than mid-chord.
   EXPECT_LT(many[1] - many[0], many[51] - many[50]);
+}
+
+TEST(NacaSpacing, SeligCoordinatesFollowTheContour) {
+  const NacaSection s = Parse("23014");
+  const std::vector<Eigen::Vector2d> points = NacaCoordinates(s, 41, TrailingEdge::kOpen);
+  ASSERT_EQ(points.size(), 81u);
+  EXPECT_TRUE(points[40].isZero(1e-15));  // the nose
+  // Equal steps in s are the cosine stations: the coordinates are the contour at s = i / 80.
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d c = NacaContourPoint(s, i / 80.0, TrailingEdge::kOpen);
+    EXPECT_LT((points[i] - c).norm(), 1e-12) << i;
+  }
+  EXPECT_GT(points.front().y(), points.back().y());  // open trailing edge, upper first
 }
 
 WingSpec SeedWing() {

@@ -59,6 +59,12 @@ double NacaLeadingEdgeRadius(const NacaSection& section);
 /// Cosine spacing: n >= 2 stations x_i = (1 - cos(pi i / (n - 1))) / 2, from 0 to 1.
 std::vector<double> CosineSpacing(int n);
 
+/// Section coordinates in Selig order (chord fractions): the upper surface from the trailing
+/// edge to the leading edge, then the lower back to the trailing edge, at `stations_per_side`
+/// >= 2 cosine-spaced camber stations each (2 stations_per_side - 1 points, nose shared).
+std::vector<Eigen::Vector2d> NacaCoordinates(const NacaSection& section, int stations_per_side,
+                                             TrailingEdge trailing_edge);
+
 /// The point of the closed contour at s in [0, 1] (chord fractions): s = 0 the upper
 /// trailing edge, s = 0.5 the leading edge, s = 1 the lower trailing edge; the station is
 /// x = (1 + cos(2 pi s)) / 2, so equal steps in s are cosine spaced in x.
