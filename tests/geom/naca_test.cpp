@@ -308,6 +308,15 @@ WingSpec SeedWing() {
   return spec;
 }
 
+// The seed's wing with the angles the paper leaves open set to values that test each term.
+WingSpec SweptTwistedSeedWing() {
+  WingSpec spec = SeedWing();
+  spec.sweep_rad = 12.0 * kDeg;
+  spec.dihedral_rad = 4.0 * kDeg;
+  spec.washout_rad = 3.0 * kDeg;
+  return spec;
+}
+
 Wing MakeOrFail(const WingSpec& spec) {
   std::string error;
   std::optional<Wing> wing = Wing::Make(spec, error);
@@ -337,10 +346,7 @@ TEST(NacaWing, SeedChordsAndSpanReproduced) {
 }
 
 TEST(NacaWing, EndSectionsAreTheScaledTwistedSweptSections) {
-  WingSpec spec = SeedWing();
-  spec.sweep_rad = 12.0 * kDeg;
-  spec.dihedral_rad = 4.0 * kDeg;
-  spec.washout_rad = 3.0 * kDeg;
+  const WingSpec spec = SweptTwistedSeedWing();
   const Wing wing = MakeOrFail(spec);
   const NacaSection root = Parse("23014");
   const NacaSection tip = Parse("23012");
@@ -372,10 +378,7 @@ TEST(NacaWing, EndSectionsAreTheScaledTwistedSweptSections) {
 }
 
 TEST(NacaWing, DerivativesAndOutwardNormal) {
-  WingSpec spec = SeedWing();
-  spec.sweep_rad = 12.0 * kDeg;
-  spec.dihedral_rad = 4.0 * kDeg;
-  spec.washout_rad = 3.0 * kDeg;
+  const WingSpec spec = SweptTwistedSeedWing();
   const Wing wing = MakeOrFail(spec);
   const double h = 1e-6;
   for (double eta : {0.0, 0.3, 1.0}) {
