@@ -18,16 +18,16 @@ enum class TrailingEdge { kOpen, kClosed };
 
 /// A parsed NACA code. All lengths are fractions of the chord.
 struct NacaSection {
-  std::string code;            ///< as given, e.g. "23012"
-  int digits = 4;              ///< 4 or 5
-  double thickness = 0.0;      ///< t: maximum thickness / chord
-  double max_camber = 0.0;     ///< 4-digit: m, maximum camber / chord (0 for 00xx)
-  double camber_position = 0;  ///< 4-digit: p; 5-digit: nominal position of max camber
-  bool reflexed = false;       ///< 5-digit Q = 1
-  double m = 0.0;              ///< 5-digit: where the camber line's cubic ends (table)
-  double k1 = 0.0;             ///< 5-digit: camber constant for design lift 0.3 (table)
-  double k2_over_k1 = 0.0;     ///< 5-digit reflexed: ratio from the table
-  double camber_scale = 1.0;   ///< 5-digit: design lift / 0.3 (= L / 2)
+  std::string code;              ///< as given, e.g. "23012"
+  int digits = 4;                ///< 4 or 5
+  double thickness = 0.0;        ///< t: maximum thickness / chord
+  double max_camber = 0.0;       ///< 4-digit: m, maximum camber / chord (0 for 00xx)
+  double camber_position = 0.0;  ///< 4-digit: p; 5-digit: nominal position of max camber
+  bool reflexed = false;         ///< 5-digit Q = 1
+  double m = 0.0;                ///< 5-digit: where the camber line's cubic ends (table)
+  double k1 = 0.0;               ///< 5-digit: camber constant for design lift 0.3 (table)
+  double k2_over_k1 = 0.0;       ///< 5-digit reflexed: ratio from the table
+  double camber_scale = 1.0;     ///< 5-digit: design lift / 0.3 (= L / 2)
 };
 
 /// Parses "0012", "2412", "23012", "23112"...; nullopt and `error` set when the code is not
