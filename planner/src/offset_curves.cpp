@@ -5,17 +5,10 @@
 #include <array>
 #include <cmath>
 
+#include "detail/surface_near.h"
+
 namespace stitchsim::planner {
-namespace {
-
-constexpr int kInitialAxisPieces = 16;
-constexpr int kMaxRefineDepth = 24;
-
-struct Foot {
-  Eigen::Vector2d uv = Eigen::Vector2d::Zero();
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();
-  bool converged = false;
-};
+namespace detail {
 
 // Closest surface point to p by Gauss-Newton from a nearby parameter: a few iterations per
 // call where the generic Project would start from (p.x, p.y).
@@ -36,6 +29,21 @@ Foot ProjectNear(const geom::Surface& s, const Eigen::Vector3d& p, Eigen::Vector
   out.point = s.Point(uv);
   return out;
 }
+
+Eigen::Vector3d Tangential(const Eigen::Vector3d& w, const Eigen::Vector3d& n) {
+  return (w - w.dot(n) * n).normalized();
+}
+
+}  // namespace detail
+
+namespace {
+
+using detail::Foot;
+using detail::ProjectNear;
+using detail::Tangential;
+
+constexpr int kInitialAxisPieces = 16;
+constexpr int kMaxRefineDepth = 24;
 
 // Where the line p + t v meets the surface: Newton on S(uv) - p - t v = 0 from `uv`.
 bool IntersectNear(const geom::Surface& s, const Eigen::Vector3d& p, const Eigen::Vector3d& v,
@@ -84,10 +92,6 @@ bool IntersectAnywhere(const geom::Surface& s, const Eigen::Vector3d& p, const E
     }
   }
   return found;
-}
-
-Eigen::Vector3d Tangential(const Eigen::Vector3d& w, const Eigen::Vector3d& n) {
-  return (w - w.dot(n) * n).normalized();
 }
 
 CurvePoint PointAt(const geom::Surface& s, const Eigen::Vector2d& uv) {

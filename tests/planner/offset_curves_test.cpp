@@ -151,7 +151,7 @@ TEST(OffsetCurves, CorrectedDriftStaysBelowATenthPercentOverManySteps) {
 }
 
 TEST(OffsetCurves, InflectedSurface124OffsetsPaperAgainstCorrected) {
-  // z = y^3 / 20 over y in [-10, 10]: one inflection at y = 0, radius down to about 3 mm.
+  // z = y^3 / 20 over y in [-10, 10]: one inflection at y = 0, radius down to 2.5 mm (17 d).
   Eigen::Matrix4d c = Eigen::Matrix4d::Zero();
   c(0, 3) = 0.05;
   geom::Domain2 dom;
