@@ -194,6 +194,7 @@ Foot CorrectedOffset(const geom::Surface& s, const CurvePoint& p, double d, doub
       const double alpha = std::acos(std::clamp(chord.dot(w) / c, -1.0, 1.0));
       const double arc = alpha > 1e-8 ? c * alpha / std::sin(alpha) : c * (1 + alpha * alpha / 6);
       step *= h / arc;
+      if (std::abs(arc - h) < 1e-12 * h) break;
     }
     w = Tangential(chord, s.Normal(y.uv));
     x = y;

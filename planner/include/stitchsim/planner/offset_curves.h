@@ -52,7 +52,7 @@ struct OffsetOptions {
   double distance_mm = 1.0;  ///< offset distance d (the tow width)
   int count = 1;             ///< offsets n
   OffsetMethod method = OffsetMethod::kPaper;
-  double max_substep_mm = 0.05;  ///< corrected method: longest walking substep
+  double max_substep_mm = 0.5;  ///< corrected method: longest walking substep
 };
 
 /// What one offset step did, per defining point (index j of the curve).
