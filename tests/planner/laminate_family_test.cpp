@@ -9,6 +9,8 @@
 #include <cmath>
 #include <iostream>
 
+#include "offset_fixtures.h"
+
 namespace stitchsim::planner {
 namespace {
 
@@ -94,12 +96,7 @@ TEST(LaminateFamily, CorrectedConstructionKeepsTheCrossingAngle) {
 TEST(LaminateFamily, OnACurvedSurfaceTheCorrectedCurveKeepsTheAngle) {
   // The inflected surface of the offset tests (z = y^3 / 20), offset curves 0.635 mm apart
   // from a reference along x; theta 30 deg.
-  Eigen::Matrix4d c = Eigen::Matrix4d::Zero();
-  c(0, 3) = 0.05;
-  geom::Domain2 dom;
-  dom.min = Eigen::Vector2d(-20, -12);
-  dom.max = Eigen::Vector2d(20, 12);
-  const auto surf = geom::MakePolynomialHeightField(c, dom);
+  const auto surf = testing::InflectedSurface(20);
   FiberAxis axis;
   axis.start_mm = Eigen::Vector3d(-18, -3.5, 50);
   axis.end_mm = Eigen::Vector3d(18, -3.5, 50);

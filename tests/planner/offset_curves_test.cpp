@@ -9,6 +9,8 @@
 #include <cmath>
 #include <iostream>
 
+#include "offset_fixtures.h"
+
 namespace stitchsim::planner {
 namespace {
 
@@ -97,13 +99,22 @@ TEST(OffsetCurves, BothMethodsAreExactOnAPlane) {
 }
 
 // Seed 002, Fig. 6: a circular section of radius 2d; the reference runs along the cylinder's
-// axis and the offsets go round it.
+// axis and the offsets go round it, 6 times.
+constexpr double kTow = 6.35;
+struct Radius2d {
+  std::unique_ptr<geom::Surface> cyl = geom::MakeCylinder(2 * kTow, true, 100, 4 * kPi * kTow - 1);
+  OffsetFamily family;
+  explicit Radius2d(OffsetMethod m) {
+    const ReferenceCurve ref = ProjectFiberAxis(*cyl, AxisAlongX(0, -20, 20), 0.01);
+    EXPECT_TRUE(ref.ok) << ref.message;
+    family = Offsets(*cyl, ref.points, kTow, 6, m);
+  }
+};
+
 TEST(OffsetCurves, PaperMethodLoses0073dPerStepOnRadius2d) {
-  constexpr double d = 6.35;
-  const auto cyl = geom::MakeCylinder(2 * d, true, 100, 2 * kPi * 2 * d - 1);
-  const ReferenceCurve ref = ProjectFiberAxis(*cyl, AxisAlongX(0, -20, 20), 0.01);
-  ASSERT_TRUE(ref.ok) << ref.message;
-  const OffsetFamily f = Offsets(*cyl, ref.points, d, 6, OffsetMethod::kPaper);
+  constexpr double d = kTow;
+  const Radius2d fx(OffsetMethod::kPaper);
+  const OffsetFamily& f = fx.family;
   const double expected = d * (1 - 2 * std::atan(0.5));  // arc r * atan(d / r), r = 2d
   for (const OffsetStepReport& s : f.steps) {
     for (std::size_t j = 0; j < s.surface_distance_mm.size(); ++j) {
@@ -118,15 +129,13 @@ TEST(OffsetCurves, PaperMethodLoses0073dPerStepOnRadius2d) {
 }
 
 TEST(OffsetCurves, CorrectedMethodKeepsTheSurfaceDistanceOnRadius2d) {
-  constexpr double d = 6.35;
-  const auto cyl = geom::MakeCylinder(2 * d, true, 100, 2 * kPi * 2 * d - 1);
-  const ReferenceCurve ref = ProjectFiberAxis(*cyl, AxisAlongX(0, -20, 20), 0.01);
-  ASSERT_TRUE(ref.ok) << ref.message;
-  const OffsetFamily f = Offsets(*cyl, ref.points, d, 6, OffsetMethod::kCorrected);
+  constexpr double d = kTow;
+  const Radius2d fx(OffsetMethod::kCorrected);
+  const OffsetFamily& f = fx.family;
   for (const OffsetStepReport& s : f.steps) {
     for (double dist : s.surface_distance_mm) EXPECT_NEAR(dist, d, 1e-6 * d);
   }
-  const OffsetDrift drift = MeasureDrift(*cyl, f, d, ref.points.size() / 2);
+  const OffsetDrift drift = MeasureDrift(*fx.cyl, f, d, f.curves[0].size() / 2);
   EXPECT_LT(std::abs(drift.drift_mm), 1e-3 * d);
   // Eq. 2 reads the normals, now d / r = 0.5 rad apart: it reports what the paper's
   // construction would lose over that turn, not the corrected offset's error.
@@ -151,13 +160,8 @@ TEST(OffsetCurves, CorrectedDriftStaysBelowATenthPercentOverManySteps) {
 }
 
 TEST(OffsetCurves, InflectedSurface124OffsetsPaperAgainstCorrected) {
-  // z = y^3 / 20 over y in [-10, 10]: one inflection at y = 0, radius down to 2.5 mm (17 d).
-  Eigen::Matrix4d c = Eigen::Matrix4d::Zero();
-  c(0, 3) = 0.05;
-  geom::Domain2 dom;
-  dom.min = Eigen::Vector2d(-5, -12);
-  dom.max = Eigen::Vector2d(5, 12);
-  const auto surf = geom::MakePolynomialHeightField(c, dom);
+  // Radius down to 2.5 mm = 17 d.
+  const auto surf = testing::InflectedSurface(5);
   constexpr double d = 0.150;
   const ReferenceCurve ref = ProjectFiberAxis(*surf, AxisAlongX(-3.5, -2, 2), 0.001);
   ASSERT_TRUE(ref.ok) << ref.message;
