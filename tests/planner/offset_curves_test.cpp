@@ -177,6 +177,34 @@ TEST(OffsetCurves, InflectedSurface124OffsetsPaperAgainstCorrected) {
             << "), corrected " << cd.drift_mm << " (" << cd.drift_mm / d * 100 << " % of d)\n";
 }
 
+// Surfaces that do not develop onto a plane (a bowl and a saddle, |radius| 100 mm at the
+// origin): no closed form, the two methods side by side, 40 tows of 3.175 mm.
+TEST(OffsetCurves, DoublyCurvedSurfacesPaperAgainstCorrected) {
+  constexpr double d = 3.175;
+  for (double saddle : {1.0, -1.0}) {
+    Eigen::Matrix4d c = Eigen::Matrix4d::Zero();
+    c(2, 0) = 0.005;
+    c(0, 2) = 0.005 * saddle;
+    geom::Domain2 dom;
+    dom.min = Eigen::Vector2d(-150, -30);
+    dom.max = Eigen::Vector2d(150, 200);
+    const auto surf = geom::MakePolynomialHeightField(c, dom);
+    const ReferenceCurve ref = ProjectFiberAxis(*surf, AxisAlongX(0, -40, 40), 0.01);
+    ASSERT_TRUE(ref.ok) << ref.message;
+    const OffsetFamily paper = Offsets(*surf, ref.points, d, 40, OffsetMethod::kPaper);
+    const OffsetFamily corrected = Offsets(*surf, ref.points, d, 40, OffsetMethod::kCorrected);
+    for (std::size_t j : {std::size_t{0}, ref.points.size() / 2}) {
+      const OffsetDrift pd = MeasureDrift(*surf, paper, d, j);
+      const OffsetDrift cd = MeasureDrift(*surf, corrected, d, j);
+      EXPECT_LT(std::abs(cd.drift_mm), 1e-3 * d) << saddle << " " << j;
+      EXPECT_GT(std::abs(pd.drift_mm), 10 * std::abs(cd.drift_mm)) << saddle << " " << j;
+      std::cout << (saddle > 0 ? "bowl" : "saddle") << ", point " << j << ": paper drift "
+                << pd.drift_mm / d * 100 << " % of d (eq. 2 total " << pd.eq2_total_mm / d * 100
+                << " %), corrected " << cd.drift_mm / d * 100 << " % of d\n";
+    }
+  }
+}
+
 TEST(OffsetCurves, LaminateAngleErrorWorstCaseIsAboutOneDegree) {
   const double err = LaminateAngleError(63.5, 0.635, 30 * kPi / 180) * 180 / kPi;
   EXPECT_NEAR(std::abs(err), 1.0, 0.05);  // seed 002: "about 1.0 deg"
