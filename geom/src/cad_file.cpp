@@ -7,6 +7,7 @@
 #include <BRep_Tool.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <IGESControl_Reader.hxx>
+#include <IGESControl_Writer.hxx>
 #include <Interface_Static.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
@@ -83,7 +84,8 @@ std::unique_ptr<Surface> ReadFace(XSControl_Reader& reader, const std::filesyste
       }
     }
     if (!face) {
-      error = file.string() + " has no face named '" + ref.name + "'";
+      error = file.string() + " has no face named '" + ref.name + "'" +
+              (format == CadFormat::kIges ? " (IGES faces are chosen by index)" : "");
       return nullptr;
     }
   } else if (ref.index < 0 || ref.index >= static_cast<int>(faces.size())) {
@@ -149,10 +151,11 @@ TopoDS_Face BSplineFace(const BSplineSpec& spec, std::string& error) {
 
 }  // namespace
 
-bool WriteBSplineStep(const std::vector<BSplineSpec>& faces, const std::vector<std::string>& names,
-                      const std::filesystem::path& file, const std::string& unit,
-                      std::string& error) {
-  // The writer states the unit but does not convert to it (OCCT 7.6): scale the net here.
+bool WriteBSplineCad(const std::vector<BSplineSpec>& faces, const std::vector<std::string>& names,
+                     const std::filesystem::path& file, CadFormat format, const std::string& unit,
+                     std::string& error) {
+  // The STEP writer states the unit but does not convert to it (OCCT 7.6): scale the net
+  // here. The IGES writer converts from millimetres itself.
   double per_mm = 0;
   if (unit == "MM") per_mm = 1;
   if (unit == "CM") per_mm = 0.1;
@@ -162,11 +165,9 @@ bool WriteBSplineStep(const std::vector<BSplineSpec>& faces, const std::vector<s
     error = "unit must be MM, CM, M or INCH, got '" + unit + "'";
     return false;
   }
+  if (format == CadFormat::kIges) per_mm = 1;
   QuietKernel();
   try {
-    STEPControl_Writer writer;
-    Interface_Static::SetCVal("xstep.cascade.unit", "MM");
-    Interface_Static::SetCVal("write.step.unit", unit.c_str());
     BRep_Builder b;
     TopoDS_Compound c;
     b.MakeCompound(c);
@@ -178,6 +179,19 @@ bool WriteBSplineStep(const std::vector<BSplineSpec>& faces, const std::vector<s
       if (f.IsNull()) return false;
       b.Add(c, f);
     }
+    if (format == CadFormat::kIges) {
+      IGESControl_Writer writer(unit == "INCH" ? "IN" : unit.c_str(), 0);
+      const bool added = writer.AddShape(c);
+      writer.ComputeModel();
+      if (!added || !writer.Write(file.string().c_str())) {
+        error = "cannot write " + file.string();
+        return false;
+      }
+      return true;
+    }
+    STEPControl_Writer writer;
+    Interface_Static::SetCVal("xstep.cascade.unit", "MM");
+    Interface_Static::SetCVal("write.step.unit", unit.c_str());
     if (writer.Transfer(c, STEPControl_AsIs) != IFSelect_RetDone) {
       error = "the kernel cannot translate the faces to STEP";
       return false;

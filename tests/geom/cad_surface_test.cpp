@@ -180,7 +180,9 @@ TEST(CadFile, StepRoundTripInAnotherUnitWithNamedFaces) {
   const auto file = dir / "two_faces.step";
   std::string err;
   BSplineSpec cyl = CylinderQuarter(300, 400);
-  ASSERT_TRUE(WriteBSplineStep({FlatPatch(), cyl}, {"flat", "crown"}, file, "M", err)) << err;
+  ASSERT_TRUE(
+      WriteBSplineCad({FlatPatch(), cyl}, {"flat", "crown"}, file, CadFormat::kStep, "M", err))
+      << err;
   const auto original = MakeBSplineSurface(cyl, err);
   for (const CadFaceRef& ref : {CadFaceRef{1, "", false}, CadFaceRef{0, "crown", false}}) {
     const auto s = ReadCadFace(file, CadFormat::kStep, ref, err);
@@ -205,6 +207,29 @@ TEST(CadFile, StepRoundTripInAnotherUnitWithNamedFaces) {
   EXPECT_NE(err.find("is empty"), std::string::npos) << err;
   EXPECT_FALSE(ReadCadFace(dir / "missing.step", CadFormat::kStep, {}, err));
   EXPECT_NE(err.find("cannot read"), std::string::npos) << err;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CadFile, IgesRoundTripInInches) {
+  const auto dir = std::filesystem::temp_directory_path() / "stitchsim_cad_geom_iges_test";
+  std::filesystem::create_directories(dir);
+  const auto file = dir / "part.igs";
+  std::string err;
+  const BSplineSpec cyl = CylinderQuarter(300, 400);
+  ASSERT_TRUE(WriteBSplineCad({FlatPatch(), cyl}, {}, file, CadFormat::kIges, "INCH", err)) << err;
+  const auto original = MakeBSplineSurface(cyl, err);
+  const auto s = ReadCadFace(file, CadFormat::kIges, {1, "", false}, err);
+  ASSERT_TRUE(s) << err;
+  EXPECT_EQ(s->Kind(), "iges");
+  EXPECT_NEAR(s->Domain().max.y(), original->Domain().max.y(), 1e-6);
+  for (int i = 0; i <= 8; ++i) {
+    const Eigen::Vector2d uv = original->Domain().max.cwiseProduct(Eigen::Vector2d(i, 8 - i) / 8);
+    EXPECT_LT((s->Point(uv) - original->Point(uv)).norm(), 1e-6);
+    EXPECT_LT((s->Normal(uv) - original->Normal(uv)).norm(), 1e-9);
+  }
+  EXPECT_FALSE(ReadCadFace(file, CadFormat::kIges, {0, "flat", false}, err));
+  std::ofstream(dir / "text.igs") << "not IGES\n";
+  EXPECT_FALSE(ReadCadFace(dir / "text.igs", CadFormat::kIges, {}, err));
   std::filesystem::remove_all(dir);
 }
 

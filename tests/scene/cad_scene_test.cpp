@@ -143,7 +143,9 @@ void WritePart(const fs::path& file) {
     for (auto& p : row) p.z() = 0;
   }
   std::string err;
-  ASSERT_TRUE(geom::WriteBSplineStep({flat, Bump()}, {"flat", "bump"}, file, "MM", err)) << err;
+  ASSERT_TRUE(geom::WriteBSplineCad({flat, Bump()}, {"flat", "bump"}, file, geom::CadFormat::kStep,
+                                    "MM", err))
+      << err;
 }
 
 TEST(CadScene, AStepFaceByIndexOrNameIsTheSurfaceWritten) {
@@ -167,6 +169,26 @@ TEST(CadScene, AStepFaceByIndexOrNameIsTheSurfaceWritten) {
       EXPECT_GT(r.scene->surface->Normal(uv).z(), 0.0);
     }
   }
+}
+
+TEST(CadScene, AnIgesFaceLoadsAndRefusesAName) {
+  const fs::path dir = Folder("iges");
+  std::string err;
+  ASSERT_TRUE(
+      geom::WriteBSplineCad({Bump()}, {}, dir / "part.igs", geom::CadFormat::kIges, "M", err))
+      << err;
+  const auto original = geom::MakeBSplineSurface(Bump(), err);
+  Write(dir / "s.yaml", SceneText("mm", "surface: {type: iges, file: part.igs, face: 0}\n"));
+  const Loaded r = Load(dir / "s.yaml");
+  ASSERT_TRUE(r.scene) << r.message;
+  EXPECT_EQ(r.scene->surface->Kind(), "iges");
+  const Eigen::Vector2d uv(37, 61);
+  EXPECT_LT((r.scene->surface->Point(uv) - original->Point(uv)).norm(), 1e-6);
+  Write(dir / "s.yaml", SceneText("mm", "surface: {type: iges, file: part.igs, face: bump}\n"));
+  const Loaded bad = Load(dir / "s.yaml");
+  EXPECT_FALSE(bad.scene);
+  EXPECT_EQ(bad.code, "scene-bad-cad-file") << bad.message;
+  EXPECT_EQ(bad.line, 6);
 }
 
 TEST(CadScene, BadPartFilesAreReportedAtTheirLine) {

@@ -47,10 +47,11 @@ struct CadFaceRef {
 std::unique_ptr<Surface> ReadCadFace(const std::filesystem::path& file, CadFormat format,
                                      const CadFaceRef& face, std::string& error);
 
-/// Writes each spec as one face of a STEP file (lengths in `unit`: "MM", "CM", "M", "INCH";
-/// the file states its unit). Face i carries names[i] when given. False with `error` set.
-bool WriteBSplineStep(const std::vector<BSplineSpec>& faces, const std::vector<std::string>& names,
-                      const std::filesystem::path& file, const std::string& unit,
-                      std::string& error);
+/// Writes each spec as one face of a STEP or IGES file (lengths in `unit`: "MM", "CM", "M",
+/// "INCH"; the file states its unit). In STEP, face i carries names[i] when given. False
+/// with `error` set. For test fixtures and exports.
+bool WriteBSplineCad(const std::vector<BSplineSpec>& faces, const std::vector<std::string>& names,
+                     const std::filesystem::path& file, CadFormat format, const std::string& unit,
+                     std::string& error);
 
 }  // namespace stitchsim::geom
