@@ -120,13 +120,14 @@ std::unique_ptr<geom::Surface> ReadPartFace(YamlReader& r, const YAML::Node& s,
   auto f = r.String(*fn, "surface.file");
   if (!f) return nullptr;
   geom::CadFaceRef ref;
-  // A whole number is an index; anything else a face name.
-  long index = 0;
+  // A plain (unquoted) number is an index; anything else, "3" quoted too, a face name.
   const std::string text = facen->IsScalar() ? facen->Scalar() : "";
-  if (facen->IsScalar() && !text.empty() &&
-      text.find_first_not_of("0123456789") == std::string::npos && text.size() < 10) {
-    index = std::stol(text);
-    ref.index = static_cast<int>(index);
+  const bool number = facen->IsScalar() && facen->Tag() == "?" && !text.empty() &&
+                      text.find_first_not_of("-+0123456789.eE") == std::string::npos;
+  if (number) {
+    auto index = r.Integer(*facen, "face", 0, 1000000);
+    if (!index) return nullptr;
+    ref.index = static_cast<int>(*index);
   } else if (auto name = r.String(*facen, "face")) {
     if (name->empty()) {
       r.Error(*facen, "bad-value", "face must be an index (from 0) or a face name");

@@ -174,6 +174,16 @@ TEST(BSplineSurface, BadSpecsAreErrorsNotExceptions) {
   EXPECT_NE(err.find("degenerate"), std::string::npos) << err;
 }
 
+// `read` (from a file) has the domain, points and normals of `original`.
+void ExpectSameSurface(const Surface& read, const Surface& original) {
+  EXPECT_LT((read.Domain().max - original.Domain().max).norm(), 1e-6);
+  for (int i = 0; i <= 8; ++i) {
+    const Eigen::Vector2d uv = original.Domain().max.cwiseProduct(Eigen::Vector2d(i, 8 - i) / 8);
+    EXPECT_LT((read.Point(uv) - original.Point(uv)).norm(), 1e-6);
+    EXPECT_LT((read.Normal(uv) - original.Normal(uv)).norm(), 1e-9);
+  }
+}
+
 TEST(CadFile, StepRoundTripInAnotherUnitWithNamedFaces) {
   const auto dir = std::filesystem::temp_directory_path() / "stitchsim_cad_geom_test";
   std::filesystem::create_directories(dir);
@@ -188,12 +198,7 @@ TEST(CadFile, StepRoundTripInAnotherUnitWithNamedFaces) {
     const auto s = ReadCadFace(file, CadFormat::kStep, ref, err);
     ASSERT_TRUE(s) << err;
     EXPECT_EQ(s->Kind(), "step");
-    EXPECT_NEAR(s->Domain().max.x(), original->Domain().max.x(), 1e-6);
-    for (int i = 0; i <= 8; ++i) {
-      const Eigen::Vector2d uv = original->Domain().max.cwiseProduct(Eigen::Vector2d(i, 8 - i) / 8);
-      EXPECT_LT((s->Point(uv) - original->Point(uv)).norm(), 1e-6);
-      EXPECT_LT((s->Normal(uv) - original->Normal(uv)).norm(), 1e-9);
-    }
+    ExpectSameSurface(*s, *original);
   }
   EXPECT_FALSE(ReadCadFace(file, CadFormat::kStep, {2, "", false}, err));
   EXPECT_NE(err.find("out of range"), std::string::npos) << err;
@@ -221,12 +226,7 @@ TEST(CadFile, IgesRoundTripInInches) {
   const auto s = ReadCadFace(file, CadFormat::kIges, {1, "", false}, err);
   ASSERT_TRUE(s) << err;
   EXPECT_EQ(s->Kind(), "iges");
-  EXPECT_NEAR(s->Domain().max.y(), original->Domain().max.y(), 1e-6);
-  for (int i = 0; i <= 8; ++i) {
-    const Eigen::Vector2d uv = original->Domain().max.cwiseProduct(Eigen::Vector2d(i, 8 - i) / 8);
-    EXPECT_LT((s->Point(uv) - original->Point(uv)).norm(), 1e-6);
-    EXPECT_LT((s->Normal(uv) - original->Normal(uv)).norm(), 1e-9);
-  }
+  ExpectSameSurface(*s, *original);
   EXPECT_FALSE(ReadCadFace(file, CadFormat::kIges, {0, "flat", false}, err));
   std::ofstream(dir / "text.igs") << "not IGES\n";
   EXPECT_FALSE(ReadCadFace(dir / "text.igs", CadFormat::kIges, {}, err));

@@ -214,6 +214,9 @@ TEST(CadScene, BadPartFilesAreReportedAtTheirLine) {
       {"nofaces.step", "0", "scene-bad-cad-file", "has no faces", 6},
       {"part.step", "2", "scene-bad-cad-file", "out of range", 6},
       {"part.step", "wing", "scene-bad-cad-file", "no face named 'wing'", 6},
+      {"part.step", "\"1\"", "scene-bad-cad-file", "no face named '1'", 6},
+      {"part.step", "-1", "scene-out-of-range", "", 6},
+      {"part.step", "1.5", "scene-bad-number", "", 6},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.file + " face " + c.face);
