@@ -6,6 +6,7 @@
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom_BSplineSurface.hxx>
+#include <IGESControl_Controller.hxx>
 #include <IGESControl_Reader.hxx>
 #include <IGESControl_Writer.hxx>
 #include <Interface_Static.hxx>
@@ -13,6 +14,7 @@
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
 #include <Precision.hxx>
+#include <STEPControl_Controller.hxx>
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
 #include <Standard_Failure.hxx>
@@ -27,6 +29,9 @@
 #include <XSControl_TransferReader.hxx>
 #include <XSControl_WorkSession.hxx>
 #include <mutex>
+#if defined(__SANITIZE_ADDRESS__)
+#include <sanitizer/lsan_interface.h>
+#endif
 #include <system_error>
 #include <vector>
 
@@ -36,11 +41,18 @@
 namespace stitchsim::geom {
 namespace {
 
-// The kernel's messages go to stdout by default; stitchsim's output is its own.
+// Once per process: the kernel's messages (to stdout by default) silenced, stitchsim's output
+// is its own; the data-exchange controllers registered. Their registries live until exit and
+// are never freed, so the leak checker of sanitizer builds is told to ignore them.
 void QuietKernel() {
   static std::once_flag once;
   std::call_once(once, [] {
+#if defined(__SANITIZE_ADDRESS__)
+    __lsan::ScopedDisabler kernel_registries;
+#endif
     Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+    STEPControl_Controller::Init();
+    IGESControl_Controller::Init();
   });
 }
 
