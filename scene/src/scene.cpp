@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "cad_surface_reader.h"
 #include "limit_map.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/common/limits.h"
@@ -229,9 +230,13 @@ class SceneLoader {
         return;
       }
       scene.surface = geom::MakeMeshSurface(std::move(mesh));
+    } else if (detail::IsCadSurfaceType(*type)) {
+      scene.surface = detail::ReadCadSurface(r_, *s, *type, unit_, files_);
     } else {
-      r_.Error(*type_node, "bad-value",
-               "surface.type must be plane, cylinder, polynomial or mesh, got '" + *type + "'");
+      r_.Error(
+          *type_node, "bad-value",
+          "surface.type must be plane, cylinder, polynomial, mesh, bspline, step or iges, got '" +
+              *type + "'");
     }
   }
 
