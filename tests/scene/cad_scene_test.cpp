@@ -11,6 +11,7 @@
 #include <fstream>
 #include <string>
 
+#include "scene_test_support.h"
 #include "stitchsim/geom/cad_surface.h"
 #include "stitchsim/scene/scene.h"
 
@@ -19,17 +20,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path Folder(const std::string& name) {
-  const fs::path d =
-      fs::temp_directory_path() / ("stitchsim_cad_scene_" + std::to_string(::getpid())) / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-void Write(const fs::path& p, const std::string& text) {
-  std::ofstream(p, std::ios::binary) << text;
-}
+fs::path Folder(const std::string& name) { return testing::Folder("cad_scene", name); }
+using testing::Write;
 
 // Scene head; the surface map starts on line 6.
 // The path runs along u over the middle of a 200 x 100 mm domain (8 x 4 in in inches).

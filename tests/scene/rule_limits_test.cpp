@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "scene_test_support.h"
 #include "stitchsim/scene/limits_file.h"
 #include "stitchsim/scene/scene.h"
 
@@ -22,11 +23,7 @@ namespace fs = std::filesystem;
 const fs::path kSource = STITCHSIM_SOURCE_DIR;
 
 fs::path WriteTemp(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / "stitchsim_rule_limits_test";
-  fs::create_directories(dir);
-  const fs::path p = dir / name;
-  std::ofstream(p) << text;
-  return p;
+  return testing::WriteTemp("rule_limits_test", name, text);
 }
 
 std::string ReadText(const fs::path& p) {

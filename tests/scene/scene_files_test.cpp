@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "scene_test_support.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/common/limits.h"
 #include "stitchsim/scene/scene.h"
@@ -21,18 +22,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // A fresh folder per test: <tmp>/stitchsim_scene_files_<pid>/<name>.
-fs::path Folder(const std::string& name) {
-  const fs::path d =
-      fs::temp_directory_path() / ("stitchsim_scene_files_" + std::to_string(::getpid())) / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-void Write(const fs::path& p, const std::string& text) {
-  fs::create_directories(p.parent_path());
-  std::ofstream(p, std::ios::binary) << text;
-}
+fs::path Folder(const std::string& name) { return testing::Folder("scene_files", name); }
+using testing::Write;
 
 // A 200 x 200 mm flat plate as ASCII STL (two triangles).
 const char kPlateStl[] =

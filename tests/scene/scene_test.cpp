@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "scene_test_support.h"
 #include "stitchsim/common/files.h"
 
 namespace stitchsim::scene {
@@ -18,11 +19,7 @@ namespace fs = std::filesystem;
 const fs::path kSource = STITCHSIM_SOURCE_DIR;
 
 fs::path WriteTemp(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / "stitchsim_scene_test";
-  fs::create_directories(dir);
-  const fs::path p = dir / name;
-  std::ofstream(p) << text;
-  return p;
+  return testing::WriteTemp("scene_test", name, text);
 }
 
 TEST(Scene, EveryBundledSceneLoadsWithoutDiagnostics) {
