@@ -47,6 +47,7 @@ inline constexpr char kNoMotionMode[] = "gcode-no-motion-mode";
 inline constexpr char kMissingFeed[] = "gcode-missing-feed";
 inline constexpr char kMissingTool[] = "gcode-missing-tool";
 inline constexpr char kCodeAfterProgramEnd[] = "gcode-code-after-program-end";
+inline constexpr char kAfpStructure[] = "gcode-afp-structure";
 
 // Dialect files.
 inline constexpr char kDialectFileNotFound[] = "dialect-file-not-found";

@@ -8,7 +8,7 @@ namespace stitchsim::program {
 
 std::span<const std::string_view> AllProgramDiagnosticCodes() {
   using namespace codes;
-  static constexpr std::array<std::string_view, 39> kAll = {
+  static constexpr std::array<std::string_view, 40> kAll = {
       kInvalidCharacter,  kLineTooLong,         kUnknownWord,        kMissingLetter,
       kMissingValue,      kBadNumber,           kExponentNotAllowed, kNan,
       kNumberOverflow,    kFractionalCode,      kSignedCode,         kDuplicateWord,
@@ -18,7 +18,7 @@ std::span<const std::string_view> AllProgramDiagnosticCodes() {
       kUnsupportedMotion, kConflictingMotion,   kConflictingUnits,   kConflictingModes,
       kTooManyMCodes,     kNegativeFeed,        kZeroFeed,           kUnknownTool,
       kMissingParameter,  kUnexpectedParameter, kNoMotionMode,       kMissingFeed,
-      kMissingTool,       kCodeAfterProgramEnd, kTooManyLines,
+      kMissingTool,       kCodeAfterProgramEnd, kTooManyLines,       kAfpStructure,
   };
   return kAll;
 }

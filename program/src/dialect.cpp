@@ -65,6 +65,11 @@ MMeaning Dialect::MeaningOfM(int code) const {
   if (code == m.head_lower) return MMeaning::kHeadLower;
   if (code == m.program_end) return MMeaning::kProgramEnd;
   if (code == m.head_section) return MMeaning::kHeadSection;
+  if (code == m.tow_add) return MMeaning::kTowAdd;
+  if (code == m.tow_cut) return MMeaning::kTowCut;
+  if (code == m.ply_start) return MMeaning::kPlyStart;
+  if (code == m.course_start) return MMeaning::kCourseStart;
+  if (code == m.course_end) return MMeaning::kCourseEnd;
   if (code >= m.user_macro_first && code <= m.user_macro_last) return MMeaning::kUserMacro;
   return MMeaning::kUnknown;
 }
@@ -194,10 +199,12 @@ bool CheckGAndMCodes(const Dialect& d, const KeyLocator& locate, DiagnosticSink&
   ok = CheckCodes(g, locate, sink, 'G') && ok;
 
   const std::vector<NamedCode> m = {
-      {"m_codes.tool_change", d.m.tool_change},  {"m_codes.stitch_on", d.m.stitch_on},
-      {"m_codes.stitch_off", d.m.stitch_off},    {"m_codes.head_retract", d.m.head_retract},
-      {"m_codes.head_lower", d.m.head_lower},    {"m_codes.program_end", d.m.program_end},
-      {"m_codes.head_section", d.m.head_section}};
+      {"m_codes.tool_change", d.m.tool_change},   {"m_codes.stitch_on", d.m.stitch_on},
+      {"m_codes.stitch_off", d.m.stitch_off},     {"m_codes.head_retract", d.m.head_retract},
+      {"m_codes.head_lower", d.m.head_lower},     {"m_codes.program_end", d.m.program_end},
+      {"m_codes.head_section", d.m.head_section}, {"m_codes.tow_add", d.m.tow_add},
+      {"m_codes.tow_cut", d.m.tow_cut},           {"m_codes.ply_start", d.m.ply_start},
+      {"m_codes.course_start", d.m.course_start}, {"m_codes.course_end", d.m.course_end}};
   ok = CheckCodes(m, locate, sink, 'M') && ok;
   if (d.m.user_macro_first < 0 || d.m.user_macro_last > kMaxCode ||
       d.m.user_macro_first > d.m.user_macro_last) {

@@ -73,6 +73,11 @@ class DialectLoader {
                        {"head_lower", IntSetter(d.m.head_lower)},
                        {"program_end", IntSetter(d.m.program_end)},
                        {"head_section", IntSetter(d.m.head_section)},
+                       {"tow_add", IntSetter(d.m.tow_add)},
+                       {"tow_cut", IntSetter(d.m.tow_cut)},
+                       {"ply_start", IntSetter(d.m.ply_start)},
+                       {"course_start", IntSetter(d.m.course_start)},
+                       {"course_end", IntSetter(d.m.course_end)},
                        {"user_macros",
                         [&](const YAML::Node& r, const std::string& rp) {
                           std::vector<int> range;

@@ -17,28 +17,17 @@ void ModalState::Error(const char* code, const Block& block, int column, std::st
   sink_.Error(code, {file_name_, block.source_line, column}, std::move(message));
 }
 
-const Step& ModalState::Update(const Block& block) {
-  step_.source_line = block.source_line;
-  step_.is_move = false;
-  step_.motion = Motion::kNone;
-  step_.tool_changed = false;
-  step_.program_end = false;
-  step_.head_section.reset();
-  step_.user_macros.clear();
-  previous_ = state_;
-  if (!block.HasWords()) return step_;
-  if (state_.program_ended) {
-    Error(codes::kCodeAfterProgramEnd, block, block.columns.first_word,
-          "words after M" + std::to_string(dialect_.m.program_end) + " (end of programme)");
-    return step_;
-  }
+void ModalState::ApplyTow(const Block& block, std::size_t k) {
+  if (!block.param) return;  // the reader has reported it
+  const bool add = dialect_.MeaningOfM(block.m_codes[k]) == MMeaning::kTowAdd;
+  const std::uint64_t bits =
+      *block.param == 0 ? ~std::uint64_t{0} : std::uint64_t{1} << (*block.param - 1);
+  state_.tows = add ? (state_.tows | bits) : (state_.tows & ~bits);
+  step_.tows_changed = true;
+}
 
-  if (block.units) state_.units = *block.units;
-  const double mm_per_unit = MmPer(state_.units);
-  if (block.feed) state_.feed_mm_per_min = *block.feed * mm_per_unit;
-  if (block.motion != Motion::kNone) state_.motion = block.motion;
-  if (block.tool) state_.selected_tool = block.tool;
-
+// Applies the block's M codes in written order; true if one ends the programme.
+bool ModalState::ApplyMCodes(const Block& block) {
   bool ends = false;
   for (std::size_t k = 0; k < block.m_codes.size(); ++k) {
     const int column = k < kMaxMCodesPerBlock ? block.columns.m_codes[k] : 0;
@@ -71,6 +60,36 @@ const Step& ModalState::Update(const Block& block) {
           step_.head_section = block.param;
         }
         break;
+      case MMeaning::kTowAdd:
+      case MMeaning::kTowCut:
+        ApplyTow(block, k);
+        break;
+      case MMeaning::kPlyStart:
+        if (state_.course != 0) {
+          Error(codes::kAfpStructure, block, column,
+                "M" + std::to_string(dialect_.m.ply_start) + " inside course " +
+                    std::to_string(state_.course) + " (end it with M" +
+                    std::to_string(dialect_.m.course_end) + " first)");
+        } else if (block.param) {
+          state_.ply = *block.param;
+        }
+        break;
+      case MMeaning::kCourseStart:
+        if (state_.course != 0) {
+          Error(codes::kAfpStructure, block, column,
+                "M" + std::to_string(dialect_.m.course_start) + " while course " +
+                    std::to_string(state_.course) + " is still open");
+        } else if (block.param) {
+          state_.course = *block.param;
+        }
+        break;
+      case MMeaning::kCourseEnd:
+        if (state_.course == 0) {
+          Error(codes::kAfpStructure, block, column,
+                "M" + std::to_string(dialect_.m.course_end) + " outside a course");
+        }
+        state_.course = 0;
+        break;
       case MMeaning::kUserMacro:
         step_.user_macros.push_back(block.m_codes[k]);
         break;
@@ -81,6 +100,33 @@ const Step& ModalState::Update(const Block& block) {
         break;  // the reader has reported it
     }
   }
+  return ends;
+}
+
+const Step& ModalState::Update(const Block& block) {
+  step_.source_line = block.source_line;
+  step_.is_move = false;
+  step_.motion = Motion::kNone;
+  step_.tool_changed = false;
+  step_.program_end = false;
+  step_.head_section.reset();
+  step_.user_macros.clear();
+  step_.tows_changed = false;
+  previous_ = state_;
+  if (!block.HasWords()) return step_;
+  if (state_.program_ended) {
+    Error(codes::kCodeAfterProgramEnd, block, block.columns.first_word,
+          "words after M" + std::to_string(dialect_.m.program_end) + " (end of programme)");
+    return step_;
+  }
+
+  if (block.units) state_.units = *block.units;
+  const double mm_per_unit = MmPer(state_.units);
+  if (block.feed) state_.feed_mm_per_min = *block.feed * mm_per_unit;
+  if (block.motion != Motion::kNone) state_.motion = block.motion;
+  if (block.tool) state_.selected_tool = block.tool;
+
+  const bool ends = ApplyMCodes(block);
 
   if (block.HasAxisWords()) {
     int first_axis_column = 0;

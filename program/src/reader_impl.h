@@ -144,6 +144,7 @@ struct ProgramReader::Impl {
 
   // Checks between words of one block once the whole line is read.
   bool CheckBlock(Block& b);
+  bool CheckParam(const Block& b, const int* column_of);
 
   int CodeFor(MMeaning m) const {
     switch (m) {
@@ -155,6 +156,18 @@ struct ProgramReader::Impl {
         return dialect.m.head_retract;
       case MMeaning::kHeadLower:
         return dialect.m.head_lower;
+      case MMeaning::kHeadSection:
+        return dialect.m.head_section;
+      case MMeaning::kTowAdd:
+        return dialect.m.tow_add;
+      case MMeaning::kTowCut:
+        return dialect.m.tow_cut;
+      case MMeaning::kPlyStart:
+        return dialect.m.ply_start;
+      case MMeaning::kCourseStart:
+        return dialect.m.course_start;
+      case MMeaning::kCourseEnd:
+        return dialect.m.course_end;
       default:
         return -1;
     }

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include "codes.h"
@@ -277,14 +278,15 @@ bool ProgramReader::Impl::ApplyM(int code, std::size_t letter_pos, Block& b) {
 
 // Checks between words of one block once the whole line is read.
 bool ProgramReader::Impl::CheckBlock(Block& b) {
-  constexpr int kMeanings = static_cast<int>(MMeaning::kUserMacro) + 1;
-  int column_of[kMeanings] = {};  // column of the M code with each meaning, 0 = absent
+  int column_of[kMMeaningCount] = {};  // column of the M code with each meaning, 0 = absent
   for (std::size_t k = 0; k < b.m_codes.size(); ++k) {
     column_of[static_cast<int>(dialect.MeaningOfM(b.m_codes[k]))] = b.columns.m_codes[k];
   }
   const auto col = [&](MMeaning m) { return column_of[static_cast<int>(m)]; };
-  const std::pair<MMeaning, MMeaning> exclusive[] = {
-      {MMeaning::kStitchOn, MMeaning::kStitchOff}, {MMeaning::kHeadRetract, MMeaning::kHeadLower}};
+  const std::pair<MMeaning, MMeaning> exclusive[] = {{MMeaning::kStitchOn, MMeaning::kStitchOff},
+                                                     {MMeaning::kHeadRetract, MMeaning::kHeadLower},
+                                                     {MMeaning::kCourseStart, MMeaning::kCourseEnd},
+                                                     {MMeaning::kTowAdd, MMeaning::kTowCut}};
   for (auto [first, second] : exclusive) {
     if (col(first) == 0 || col(second) == 0) continue;
     if (col(first) > col(second)) std::swap(first, second);
@@ -293,16 +295,57 @@ bool ProgramReader::Impl::CheckBlock(Block& b) {
               std::to_string(CodeFor(first)) + " on the same line");
     return false;
   }
-  if (col(MMeaning::kHeadSection) != 0 && !b.param) {
-    Error(codes::kMissingParameter, static_cast<std::size_t>(col(MMeaning::kHeadSection) - 1),
-          "M" + std::to_string(dialect.m.head_section) + " needs " + dialect.param_letter +
-              "<head index>");
-    return false;
+  return CheckParam(b, column_of);
+}
+
+// One P word per block, read by at most one of the codes that take it (each needs it).
+bool ProgramReader::Impl::CheckParam(const Block& b, const int* column_of) {
+  const auto col = [&](MMeaning m) { return column_of[static_cast<int>(m)]; };
+  struct ParamUse {
+    MMeaning meaning;
+    const char* what;
+    int min;
+    int max;
+  };
+  constexpr int kAny = std::numeric_limits<int>::max();
+  static constexpr ParamUse kParamUses[] = {{MMeaning::kHeadSection, "<head index>", 0, kAny},
+                                            {MMeaning::kTowAdd, "<tow number>", 0, kMaxTows},
+                                            {MMeaning::kTowCut, "<tow number>", 0, kMaxTows},
+                                            {MMeaning::kPlyStart, "<ply number>", 1, kAny},
+                                            {MMeaning::kCourseStart, "<course number>", 1, kAny}};
+  const ParamUse* used = nullptr;
+  for (const ParamUse& use : kParamUses) {
+    if (col(use.meaning) == 0) continue;
+    const std::string code = "M" + std::to_string(CodeFor(use.meaning));
+    if (used != nullptr) {
+      const int first = std::min(col(used->meaning), col(use.meaning));
+      const int second = std::max(col(used->meaning), col(use.meaning));
+      Error(codes::kConflictingModes, static_cast<std::size_t>(second - 1),
+            "M codes at columns " + std::to_string(first) + " and " + std::to_string(second) +
+                " both need the one " + dialect.param_letter + " word of the line");
+      return false;
+    }
+    used = &use;
+    if (!b.param) {
+      Error(codes::kMissingParameter, static_cast<std::size_t>(col(use.meaning) - 1),
+            code + " needs " + dialect.param_letter + use.what);
+      return false;
+    }
+    if (*b.param < use.min || *b.param > use.max) {
+      Error(codes::kMissingParameter, static_cast<std::size_t>(b.columns.param - 1),
+            code + " needs " + dialect.param_letter + use.what + " from " +
+                std::to_string(use.min) +
+                (use.max == kAny ? std::string(" on") : " to " + std::to_string(use.max)));
+      return false;
+    }
   }
-  if (b.param && col(MMeaning::kHeadSection) == 0) {
+  if (b.param && used == nullptr) {
     Error(codes::kUnexpectedParameter, static_cast<std::size_t>(b.columns.param - 1),
           std::string(1, dialect.param_letter) + " is only used with M" +
-              std::to_string(dialect.m.head_section));
+              std::to_string(dialect.m.head_section) + ", M" + std::to_string(dialect.m.tow_add) +
+              ", M" + std::to_string(dialect.m.tow_cut) + ", M" +
+              std::to_string(dialect.m.ply_start) + " and M" +
+              std::to_string(dialect.m.course_start));
     return false;
   }
   return true;

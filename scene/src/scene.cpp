@@ -570,6 +570,13 @@ const PathSpec* Scene::FindPath(const std::string& path_name) const {
   return nullptr;
 }
 
+const PlySpec* Scene::FindPly(const std::string& ply_name) const {
+  for (const PlySpec& ply : plies) {
+    if (ply.name == ply_name) return &ply;
+  }
+  return nullptr;
+}
+
 std::unique_ptr<Scene> LoadScene(const std::filesystem::path& file, DiagnosticSink& sink,
                                  const LoadOptions& options) {
   return SceneLoader(file, sink, options).Load();

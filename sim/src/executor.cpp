@@ -112,6 +112,9 @@ class Executor {
     rec.feed_mm_per_min = after.feed_mm_per_min.value_or(0.0);
     rec.stitching = after.stitching;
     rec.head_retracted = after.head_retracted;
+    rec.tows = after.tows;
+    rec.ply = after.ply;
+    rec.course = after.course;
     const double dist = (to.tool.translation() - from.tool.translation()).norm();
     const double angle = geom::AngleBetween(from.tool.linear(), to.tool.linear());
     p.coarse_needed =

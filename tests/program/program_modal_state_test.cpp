@@ -149,5 +149,55 @@ TEST(program_modal_state, CheckProgramSummarisesAGoodFile) {
   EXPECT_EQ(summary.header.Find("head"), "rs535");
 }
 
+// AFP structure (docs/program-format.md, "Fibre placement"): the tow mask, ply and course
+// are modal and applied before the block's move.
+TEST(program_modal_state, TowCodesSetAndClearTheMaskBeforeTheMove) {
+  Tracked t;
+  Track("G21 G90 T3 M6\nM70 P2\nM71 P5\nM62 P0 G1 X1 F100\nM63 P16\nM63 P1 X2\nM62 P16\n"
+        "M72\nM63 P0\n",
+        t);
+  ASSERT_TRUE(t.sink.Diagnostics().empty()) << Describe(t.sink);
+  EXPECT_EQ(t.states[0].ply, 0);
+  EXPECT_EQ(t.states[1].ply, 2);
+  EXPECT_EQ(t.states[2].course, 5);
+  EXPECT_EQ(t.states[3].tows, ~std::uint64_t{0});
+  EXPECT_TRUE(t.steps[3].tows_changed);
+  EXPECT_TRUE(t.steps[3].is_move);
+  EXPECT_EQ(t.states[4].tows, ~std::uint64_t{0} & ~(std::uint64_t{1} << 15));
+  EXPECT_EQ(t.states[5].tows, ~std::uint64_t{0} & ~(std::uint64_t{1} << 15) & ~std::uint64_t{1});
+  EXPECT_EQ(t.states[6].tows, ~std::uint64_t{0} & ~std::uint64_t{1});
+  EXPECT_EQ(t.states[7].course, 0);
+  EXPECT_EQ(t.states[7].ply, 2);
+  EXPECT_EQ(t.states[8].tows, 0u);
+  EXPECT_FALSE(t.steps[7].tows_changed);
+}
+
+TEST(program_modal_state, AfpStructureErrorsNameTheirLine) {
+  const struct {
+    const char* text;
+    const char* code;
+    int line;
+  } cases[] = {
+      {"M71 P1\nM71 P2\n", "gcode-afp-structure", 2},
+      {"M72\n", "gcode-afp-structure", 1},
+      {"M71 P1\nM70 P1\n", "gcode-afp-structure", 2},
+      {"M62 P65\n", "gcode-missing-parameter", 1},
+      {"M62\n", "gcode-missing-parameter", 1},
+      {"M70 P0\n", "gcode-missing-parameter", 1},
+      {"M62 M63 P1\n", "gcode-conflicting-modes", 1},
+      {"M62 M71 P1\n", "gcode-conflicting-modes", 1},
+      {"M71 M72 P1\n", "gcode-conflicting-modes", 1},
+      {"G0 X1 P1\n", "gcode-unexpected-parameter", 1},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.text);
+    Tracked t;
+    Track(c.text, t);
+    ASSERT_TRUE(t.sink.HasErrors());
+    EXPECT_EQ(t.sink.Diagnostics().front().code, c.code) << Describe(t.sink);
+    EXPECT_EQ(t.sink.Diagnostics().front().location.line, c.line) << Describe(t.sink);
+  }
+}
+
 }  // namespace
 }  // namespace stitchsim::program

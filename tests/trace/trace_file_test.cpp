@@ -70,6 +70,9 @@ Recorder MakeTrace() {
   l.duration_s = 0.7;
   l.feed_mm_per_min = 3000;
   l.samples_needed = 23;
+  l.tows = 0x8000'0000'0000'8001ULL;  // tows 1, 16 and 64
+  l.ply = 3;
+  l.course = 41;
   r.lines.push_back(l);
   for (int i = 0; i < 6; ++i) {
     TraceSample s;
@@ -164,6 +167,9 @@ TEST(TraceFile, WhatIsWrittenIsReadBackBitForBit) {
   EXPECT_EQ(a.drive_to_mm, b.drive_to_mm);
   EXPECT_EQ(a.duration_s, b.duration_s);
   EXPECT_EQ(a.samples_needed, b.samples_needed);
+  EXPECT_EQ(a.tows, b.tows);
+  EXPECT_EQ(a.ply, b.ply);
+  EXPECT_EQ(a.course, b.course);
   ASSERT_EQ(back.samples.size(), t.samples.size());
   for (std::size_t i = 0; i < t.samples.size(); ++i) {
     const TraceSample &x = back.samples[i], &y = t.samples[i];
@@ -241,9 +247,10 @@ TEST(TraceFile, DamagedFilesAreErrorsWithFileAndOffset) {
   EXPECT_FALSE(read(bytes, error));
   EXPECT_NE(error.find("not a stitchsim trace"), std::string::npos) << error;
   bytes = good;
-  bytes[8] = 2;
+  bytes[8] = static_cast<char>(kTraceFormatVersion + 1);
   EXPECT_FALSE(read(bytes, error));
-  EXPECT_NE(error.find("version 2"), std::string::npos) << error;
+  EXPECT_NE(error.find("version " + std::to_string(kTraceFormatVersion + 1)), std::string::npos)
+      << error;
   EXPECT_FALSE(read(good + "x", error));
   EXPECT_NE(error.find("after the summary"), std::string::npos) << error;
 }

@@ -172,6 +172,9 @@ void DecodeLine(Decoder& d, LineRecord& l) {
                     &l.feed_mm_per_min, &l.samples_needed}) {
     *v = d.F64("line record");
   }
+  l.tows = d.Le(8, "tow mask");
+  l.ply = d.I32("ply");
+  l.course = d.I32("course");
 }
 
 // A body index of the header's table (-1 allowed only where `none_ok`).

@@ -147,6 +147,9 @@ void TraceFileWriter::OnLine(const LineRecord& l) {
                    l.feed_mm_per_min, l.samples_needed}) {
     e.F64(v);
   }
+  e.U64(l.tows);
+  e.I32(l.ply);
+  e.I32(l.course);
   e.FlushTo(impl_->file->Stream());
 }
 

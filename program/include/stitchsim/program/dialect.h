@@ -63,7 +63,14 @@ enum class MMeaning {
   kProgramEnd,   // M30: end of programme; no words may follow
   kHeadSection,  // M60 P<n>: the following blocks belong to head n
   kUserMacro,    // M100..M199: user functions, passed through, no kinematic effect
+  kTowAdd,       // M62 P<n>: AFP tow n (1-based) restarts here; P0: every tow of the head
+  kTowCut,       // M63 P<n>: AFP tow n is cut here; P0: every tow
+  kPlyStart,     // M70 P<n>: ply n starts (AFP; docs/program-format.md, "Fibre placement")
+  kCourseStart,  // M71 P<n>: course n of the ply starts
+  kCourseEnd,    // M72: the course ends
 };
+/// Number of MMeaning values.
+inline constexpr int kMMeaningCount = static_cast<int>(MMeaning::kCourseEnd) + 1;
 
 struct GCodes {
   int rapid = 0;
@@ -76,6 +83,9 @@ struct GCodes {
   friend bool operator==(const GCodes&, const GCodes&) = default;
 };
 
+/// Most AFP tows a programme can address (M62/M63 P1..P64; the modal tow mask is 64 bits).
+inline constexpr int kMaxTows = 64;
+
 struct MCodes {
   int tool_change = 6;
   int stitch_on = 10;
@@ -84,6 +94,11 @@ struct MCodes {
   int head_lower = 21;
   int program_end = 30;
   int head_section = 60;
+  int tow_add = 62;
+  int tow_cut = 63;
+  int ply_start = 70;
+  int course_start = 71;
+  int course_end = 72;
   int user_macro_first = 100;  // inclusive
   int user_macro_last = 199;   // inclusive
   friend bool operator==(const MCodes&, const MCodes&) = default;

@@ -30,7 +30,12 @@ struct MachineState {
   std::optional<int> selected_tool;            // last T word (preselection)
   std::optional<int> active_tool;              // T number mounted by the last M6
   std::optional<int> head_section;             // P of the last M60
-  bool program_ended = false;                  // M30 seen
+  /// AFP tows laying (bit i = tow i + 1): M62 P<n> sets bit n - 1 (P0: every bit), M63
+  /// clears it. Tows lay material only on feed moves with the head lowered (docs/afp.md).
+  std::uint64_t tows = 0;
+  int ply = 0;                 // P of the last M70 (0: before any ply)
+  int course = 0;              // P of the open M71 course, 0 outside a course (after M72)
+  bool program_ended = false;  // M30 seen
 
   const std::optional<double>& operator[](Axis axis) const {
     return axes[static_cast<std::size_t>(axis)];
@@ -46,6 +51,7 @@ struct Step {
   bool program_end = false;         // M30 on this block (applied after the move)
   std::optional<int> head_section;  // M60 P<n> on this block (applied before the move)
   std::vector<int> user_macros;     // M100..M199 on this block, in written order
+  bool tows_changed = false;        // M62/M63 on this block (applied before the move)
 };
 
 /// Applies blocks in order. Order within a block: G20/G21, F, G0/G1, T, M6, M10/M11,
@@ -66,6 +72,8 @@ class ModalState {
 
  private:
   void Error(const char* code, const Block& block, int column, std::string message);
+  void ApplyTow(const Block& block, std::size_t k);
+  bool ApplyMCodes(const Block& block);
 
   const Dialect& dialect_;
   std::string file_name_;

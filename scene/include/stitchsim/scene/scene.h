@@ -15,6 +15,7 @@
 #include "stitchsim/geom/curve.h"
 #include "stitchsim/geom/surface.h"
 #include "stitchsim/scene/head_spec.h"
+#include "stitchsim/scene/ply.h"
 
 namespace stitchsim::scene {
 
@@ -52,6 +53,7 @@ struct Scene {
   double mold_depth_mm = 50.0;
   std::vector<Constraint> constraints;
   std::vector<PathSpec> paths;
+  std::vector<PlySpec> plies;  ///< AFP plies (`plies:`), in lay-up order
   double nominal_stitch_length_mm = 5.0;
   RuleLimits limits;            ///< the head's limits overridden key by key by the scene's
   double rail_offset_mm = 0.0;  ///< rail policy: carriage x minus tool x (world), preferred
@@ -68,6 +70,7 @@ struct Scene {
   bool OmitsMjcfBody(const std::string& body) const;
 
   const PathSpec* FindPath(const std::string& path_name) const;
+  const PlySpec* FindPly(const std::string& ply_name) const;
 };
 
 /// The cell fixtures a scene may omit, and the top-level MJCF body of each.

@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -108,6 +109,12 @@ struct LineRecord {
   double feed_mm_per_min = 0.0;                   ///< modal F (0 if none)
   bool stitching = false;                         ///< M10 in force
   bool head_retracted = false;                    ///< M20 in force
+  /// AFP: the tows laying on this line (bit i = tow i + 1; the modal mask once the line's
+  /// M62/M63 are applied, so in force during its move), the ply (M70 P, 0 before any) and the
+  /// open course (M71 P, 0 outside a course). docs/program-format.md, "Fibre placement".
+  std::uint64_t tows = 0;
+  int ply = 0;
+  int course = 0;
   /// Trace samples the line needs at the executor's steps (grid, in-preform, needle events).
   double samples_needed = 0.0;
   /// samples_needed > limits::kMaxSamplesPerLine: the line was sampled at its ends only and

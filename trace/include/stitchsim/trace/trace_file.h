@@ -18,7 +18,7 @@
 namespace stitchsim::trace {
 
 /// Version of the format this build writes and reads.
-inline constexpr std::uint32_t kTraceFormatVersion = 1;
+inline constexpr std::uint32_t kTraceFormatVersion = 2;
 
 /// FNV-1a (64 bit) of `bytes`: a file's fingerprint.
 std::uint64_t Fnv1a64(std::string_view bytes);
