@@ -4,12 +4,12 @@
 #include <limits>
 #include <optional>
 
-#include "detail/surface_near.h"
+#include "stitchsim/geom/surface_walk.h"
 
 namespace stitchsim::planner {
 namespace {
 
-using detail::Tangential;
+using geom::Tangential;
 
 // A point on a polyline curve: segment j, fraction s, on the surface.
 struct OnCurve {
@@ -29,8 +29,8 @@ double SignedAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
 OnCurve Locate(const geom::Surface& surface, const SurfaceCurve& c, std::size_t j, double s) {
   const CurvePoint& a = c[j];
   const CurvePoint& b = c[std::min(j + 1, c.size() - 1)];
-  const detail::Foot f = detail::ProjectNear(surface, a.position + s * (b.position - a.position),
-                                             a.uv + s * (b.uv - a.uv));
+  const geom::SurfaceFoot f = geom::ProjectNear(surface, a.position + s * (b.position - a.position),
+                                                a.uv + s * (b.uv - a.uv));
   OnCurve out;
   out.j = j;
   out.s = s;

@@ -5,42 +5,15 @@
 #include <array>
 #include <cmath>
 
-#include "detail/surface_near.h"
+#include "stitchsim/geom/surface_walk.h"
 
 namespace stitchsim::planner {
-namespace detail {
-
-// Closest surface point to p by Gauss-Newton from a nearby parameter: a few iterations per
-// call where the generic Project would start from (p.x, p.y).
-Foot ProjectNear(const geom::Surface& s, const Eigen::Vector3d& p, Eigen::Vector2d uv) {
-  Foot out;
-  for (int iter = 0; iter < 200; ++iter) {
-    const Eigen::Matrix<double, 3, 2> j = s.Jacobian(uv);
-    const Eigen::Vector2d step =
-        (j.transpose() * j).ldlt().solve(j.transpose() * (p - s.Point(uv)));
-    if (!step.allFinite()) return out;
-    uv += step;
-    if (step.norm() < 1e-13 * (1.0 + uv.norm())) {
-      out.converged = true;
-      break;
-    }
-  }
-  out.uv = uv;
-  out.point = s.Point(uv);
-  return out;
-}
-
-Eigen::Vector3d Tangential(const Eigen::Vector3d& w, const Eigen::Vector3d& n) {
-  return (w - w.dot(n) * n).normalized();
-}
-
-}  // namespace detail
 
 namespace {
 
-using detail::Foot;
-using detail::ProjectNear;
-using detail::Tangential;
+using Foot = geom::SurfaceFoot;
+using geom::ProjectNear;
+using geom::Tangential;
 
 constexpr int kInitialAxisPieces = 16;
 constexpr int kMaxRefineDepth = 24;
@@ -178,28 +151,7 @@ Foot PaperOffset(const geom::Surface& s, const CurvePoint& p, double d) {
 // and its arc length taken from the chord and the turn of the tangent (exact on a circle), the
 // direction carried as the chord laid into the next tangent plane, until the arc walked is d.
 Foot CorrectedOffset(const geom::Surface& s, const CurvePoint& p, double d, double max_substep) {
-  const int pieces = std::max(1, static_cast<int>(std::ceil(d / max_substep)));
-  const double h = d / pieces;
-  Foot x{p.uv, p.position, true};
-  Eigen::Vector3d w = p.normal.cross(p.tangent).normalized();
-  for (int k = 0; k < pieces; ++k) {
-    double step = h;
-    Foot y;
-    Eigen::Vector3d chord;
-    for (int iter = 0; iter < 4; ++iter) {
-      y = ProjectNear(s, x.point + step * w, x.uv);
-      if (!y.converged) return y;
-      chord = y.point - x.point;
-      const double c = chord.norm();
-      const double alpha = std::acos(std::clamp(chord.dot(w) / c, -1.0, 1.0));
-      const double arc = alpha > 1e-8 ? c * alpha / std::sin(alpha) : c * (1 + alpha * alpha / 6);
-      step *= h / arc;
-      if (std::abs(arc - h) < 1e-12 * h) break;
-    }
-    w = Tangential(chord, s.Normal(y.uv));
-    x = y;
-  }
-  return x;
+  return geom::WalkOnSurface(s, p.uv, p.normal.cross(p.tangent), d, max_substep);
 }
 
 constexpr std::array<double, 5> kGaussX = {-0.9061798459386640, -0.5384693101056831, 0.0,

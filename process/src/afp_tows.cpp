@@ -1,0 +1,60 @@
+#include "stitchsim/process/afp_tows.h"
+
+#include "stitchsim/geom/surface_walk.h"
+
+namespace stitchsim::process {
+
+TowLayout TowLayoutOf(const scene::HeadSpec& head) {
+  return TowLayout{head.afp.tows, head.afp.tow_width_mm};
+}
+
+double TowCentreOffset(const TowLayout& layout, int tow) {
+  return (tow - 0.5 * (layout.tows + 1)) * layout.width_mm;
+}
+
+std::uint64_t AllTows(const TowLayout& layout) {
+  return layout.tows >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << layout.tows) - 1;
+}
+
+TowCross TowsAt(const geom::Surface& surface, const Eigen::Isometry3d& tool_part,
+                const TowLayout& layout, const Eigen::Vector2d* uv_hint, double max_substep_mm) {
+  TowCross out;
+  const Eigen::Vector3d p = tool_part.translation();
+  geom::SurfaceFoot foot;
+  if (uv_hint != nullptr) foot = geom::ProjectNear(surface, p, *uv_hint);
+  if (!foot.converged) {
+    const geom::SurfaceProjection proj = surface.Project(p);
+    if (!proj.inside_domain) return out;
+    foot = geom::ProjectNear(surface, p, proj.uv);
+    if (!foot.converged) return out;
+  }
+  if (!surface.Domain().Contains(foot.uv, 1e-6)) return out;
+  out.centre_uv = foot.uv;
+  out.centre = foot.point;
+  const int k = layout.tows;
+  out.boundary_uv.resize(static_cast<std::size_t>(k) + 1);
+  out.boundary.resize(static_cast<std::size_t>(k) + 1);
+  const Eigen::Vector3d x = tool_part.linear().col(0);
+  // Walk right from the centre, then left, stopping at every boundary on the way.
+  for (const double sign : {1.0, -1.0}) {
+    geom::SurfaceFoot at = foot;
+    double walked = 0.0;  // along the surface from the centre, signed
+    Eigen::Vector3d dir = sign * x;
+    for (int b = sign > 0 ? (k + 1) / 2 : k / 2; b >= 0 && b <= k; b += sign > 0 ? 1 : -1) {
+      const double target = (b - 0.5 * k) * layout.width_mm;  // boundary b's offset
+      const double step = std::abs(target - walked);
+      const geom::SurfaceFoot next = geom::WalkOnSurface(surface, at.uv, dir, step, max_substep_mm);
+      if (!next.converged || !surface.Domain().Contains(next.uv, 1e-6)) return out;
+      // Keep walking outwards: the last chord laid into the tangent plane where it ends.
+      if (step > 0) dir = geom::Tangential(next.point - at.point, surface.Normal(next.uv));
+      at = next;
+      walked = target;
+      out.boundary_uv[static_cast<std::size_t>(b)] = at.uv;
+      out.boundary[static_cast<std::size_t>(b)] = at.point;
+    }
+  }
+  out.ok = true;
+  return out;
+}
+
+}  // namespace stitchsim::process

@@ -1,0 +1,73 @@
+// Tow placement across the compaction roller (process/afp_tows.h) against closed forms: on a
+// plane the boundaries are straight offsets; around a cylinder they are arcs of the offset's
+// length (the walk measures along the surface, not the chord).
+
+#include "stitchsim/process/afp_tows.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace stitchsim::process {
+namespace {
+
+TEST(afp_tows, CentresAreSymmetricAboutTheToolPoint) {
+  const TowLayout l{16, 6.35};
+  EXPECT_DOUBLE_EQ(TowCentreOffset(l, 1), -7.5 * 6.35);
+  EXPECT_DOUBLE_EQ(TowCentreOffset(l, 16), 7.5 * 6.35);
+  EXPECT_DOUBLE_EQ(TowCentreOffset(TowLayout{3, 2.0}, 2), 0.0);
+  EXPECT_EQ(AllTows(l), 0xFFFFu);
+  EXPECT_EQ(AllTows(TowLayout{64, 1.0}), ~std::uint64_t{0});
+}
+
+TEST(afp_tows, OnAPlaneTheBoundariesAreStraightOffsetsAlongToolX) {
+  const auto plane = geom::MakePlane(1000, 1000);
+  Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
+  // Travel along part +y, head axis +z: tool x = y cross z = +x.
+  tool.linear().col(0) = Eigen::Vector3d::UnitX();
+  tool.linear().col(1) = Eigen::Vector3d::UnitY();
+  tool.linear().col(2) = Eigen::Vector3d::UnitZ();
+  tool.translation() = Eigen::Vector3d(10, 20, 0);
+  for (int k : {15, 16}) {
+    const TowLayout l{k, 6.35};
+    const TowCross c = TowsAt(*plane, tool, l, nullptr);
+    ASSERT_TRUE(c.ok);
+    ASSERT_EQ(c.boundary.size(), static_cast<std::size_t>(k) + 1);
+    for (int b = 0; b <= k; ++b) {
+      const Eigen::Vector3d want(10 + (b - 0.5 * k) * 6.35, 20, 0);
+      EXPECT_LT((c.boundary[static_cast<std::size_t>(b)] - want).norm(), 1e-9) << k << " " << b;
+    }
+  }
+}
+
+TEST(afp_tows, AroundACylinderTheBoundariesAreArcsOfTheirOffset) {
+  const double r = 150.0;  // a tight radius: the chord would be 1.4 mm short at the edge tow
+  const auto cyl = geom::MakeCylinder(r, true, 1000, 600);
+  Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
+  // Axial travel (+x) at the crown, head axis +z: tool x = x cross z = -y.
+  tool.linear().col(0) = -Eigen::Vector3d::UnitY();
+  tool.linear().col(1) = Eigen::Vector3d::UnitX();
+  tool.linear().col(2) = Eigen::Vector3d::UnitZ();
+  tool.translation() = Eigen::Vector3d(5, 0, 0);
+  const TowLayout l{16, 6.35};
+  const Eigen::Vector2d hint(4, 1);
+  const TowCross c = TowsAt(*cyl, tool, l, &hint);
+  ASSERT_TRUE(c.ok);
+  for (int b = 0; b <= 16; ++b) {
+    const double s = (b - 8) * 6.35;  // arc length, towards -y
+    const Eigen::Vector3d want(5, -r * std::sin(s / r), -r + r * std::cos(s / r));
+    EXPECT_LT((c.boundary[static_cast<std::size_t>(b)] - want).norm(), 1e-6) << b;
+  }
+}
+
+TEST(afp_tows, AToolPointOffTheSurfaceIsNotOk) {
+  const auto plane = geom::MakePlane(100, 100);
+  Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
+  tool.translation() = Eigen::Vector3d(500, 0, 0);
+  EXPECT_FALSE(TowsAt(*plane, tool, TowLayout{16, 6.35}, nullptr).ok);
+  tool.translation() = Eigen::Vector3d(45, 0, 0);  // centre on, right edge tow off the plate
+  EXPECT_FALSE(TowsAt(*plane, tool, TowLayout{16, 6.35}, nullptr).ok);
+}
+
+}  // namespace
+}  // namespace stitchsim::process
