@@ -380,7 +380,7 @@ class PassBuilder {
     RasterTransit t;
     t.jump = force_retract;
     for (std::size_t i = 0; i < plan_.footprints.size() && !t.jump; ++i) {
-      t.jump = plan_.footprints[i].Crosses(pos_uv_, {u, pass.piece.v_mm});
+      t.jump = Crosses(plan_.footprints[i], pos_uv_, {u, pass.piece.v_mm});
     }
     if (t.jump) {
       t.lift_mm =
@@ -390,6 +390,16 @@ class PassBuilder {
     t.turn_sign = -pass.direction;
     return t;
   }
+
+  // Off a height field a move that only grazes a footprint's edge (a row end at a bay edge to
+  // the next row's start there) does not cross it: the (u, v) footprints are not axis-exact, and
+  // the exact slab test would retract on rounding. A height field keeps the exact test.
+  bool Crosses(const scene::Footprint& f, const Eigen::Vector2d& a,
+               const Eigen::Vector2d& b) const {
+    if (surface_.IsHeightField()) return f.Crosses(a, b);
+    return f.SegmentDepth(a, b) > kGrazeMm;
+  }
+  static constexpr double kGrazeMm = 1e-6;
 
   const geom::Surface& surface_;
   const RasterPlan& plan_;
