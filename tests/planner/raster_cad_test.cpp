@@ -188,18 +188,8 @@ TEST(RasterOnCadSurface, StepWingCoverWindowVerifiesClean) {
   }
 }
 
-std::vector<std::string> Lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);) out.push_back(l);
-  return out;
-}
-
-std::string Join(const std::vector<std::string>& lines) {
-  std::string s;
-  for (const auto& l : lines) s += l + "\n";
-  return s;
-}
+using testing::Join;
+using testing::Lines;
 
 // `text` with its stitch number `index` (from 0) moved to `p` (its X kept); and its line.
 std::pair<std::string, int> MoveStitch(const std::string& text, std::size_t index,
@@ -264,6 +254,15 @@ TEST(RasterOnCadSurface, CrossingRuleJudgesTheStepProgrammeInUv) {
       << c->findings.front().subject;
 }
 
+// Coarse: the geometry, not the density, is under test.
+RasterOptions CylinderOptions() {
+  RasterOptions o;
+  o.pitch_mm = 5.0;
+  o.row_spacing_mm = 20.0;
+  o.margin_mm = 2.0;
+  return o;
+}
+
 // A footprint off a height field holds the closest points of its grown box's corners; a
 // constraint beside the surface does not project. On a height field it is the (x, y) one.
 TEST(RasterOnCadSurface, FootprintOnACylinderInItsUv) {
@@ -287,6 +286,14 @@ TEST(RasterOnCadSurface, FootprintOnACylinderInItsUv) {
   away.pose_mm.translation().y() += 10000.0;
   EXPECT_FALSE(scene::ConstraintFootprintOn(away, *s->surface, 5.0, error).has_value());
   EXPECT_FALSE(error.empty());
+  // The planner reports it at the constraint's line.
+  s->constraints.push_back(away);
+  DiagnosticSink sink;
+  EXPECT_FALSE(PlanRaster(*s, CylinderOptions(), sink).has_value());
+  ASSERT_FALSE(sink.Diagnostics().empty());
+  EXPECT_EQ(sink.Diagnostics().front().code, "plan-raster-footprint");
+  EXPECT_EQ(sink.Diagnostics().front().location.line, c.where.line);
+  EXPECT_GT(c.where.line, 0);
   const auto wing = Load("wing_cover.yaml");
   ASSERT_TRUE(wing);
   for (const scene::Constraint& w : wing->constraints) {
@@ -305,10 +312,7 @@ TEST(RasterOnCadSurface, FootprintOnACylinderInItsUv) {
 TEST(RasterOnCadSurface, CylinderRowsSpacedOnTheSurface) {
   const auto s = Load("cylinder_r90_frame.yaml");
   ASSERT_TRUE(s);
-  RasterOptions o;
-  o.pitch_mm = 5.0;
-  o.row_spacing_mm = 20.0;
-  o.margin_mm = 2.0;
+  RasterOptions o = CylinderOptions();
   DiagnosticSink sink;
   const std::optional<RasterPlan> plan = PlanRaster(*s, o, sink);
   for (const auto& d : sink.Diagnostics()) ADD_FAILURE() << FormatDiagnostic(d);
@@ -365,10 +369,7 @@ namespace {
 TEST(RasterOnCadSurface, CrossingRuleOnACylinderUnderAFloatingStringer) {
   const auto s = Load("cylinder_r90_frame.yaml");
   ASSERT_TRUE(s);
-  RasterOptions o;
-  o.pitch_mm = 5.0;
-  o.row_spacing_mm = 20.0;
-  o.margin_mm = 2.0;
+  RasterOptions o = CylinderOptions();
   o.region = Eigen::AlignedBox2d(Eigen::Vector2d(-200, 0), Eigen::Vector2d(200, 300));
   const std::string clean = testing::Plan(*s, o);
   const verify::Report r = testing::VerifyText(*s, clean, o.pitch_mm, false);

@@ -6,6 +6,7 @@
 
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "stitchsim/planner/raster_planner.h"
 #include "stitchsim/sim/collision.h"
@@ -65,6 +66,21 @@ inline std::string Errors(const verify::Report& r) {
       if (s.size() > 2000) return s;
     }
   }
+  return s;
+}
+
+/// The lines of `text`, without their line ends.
+inline std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+/// `lines` as one text, each ended by a line feed.
+inline std::string Join(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const auto& l : lines) s += l + "\n";
   return s;
 }
 
