@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -162,6 +163,38 @@ TEST(RasterOnCadSurface, StepWingCoverPlansLikeThePolynomialSkin) {
     EXPECT_LT(worst_face, 0.01);
     EXPECT_LT(worst_poly, 0.01);
   }
+}
+
+// scenes/wing_cover_step.yaml reads scenes/parts/wing_skin.step, the skin of Skin() in mm,
+// written by this test when STITCHSIM_WRITE_PARTS=1 (the command in the scene's comment). The
+// face is the polynomial skin, and the window plans as the scratch fixture's does.
+TEST(RasterOnCadSurface, BundledStepPartIsTheWingSkin) {
+  const fs::path part = kSource / "scenes" / "parts" / "wing_skin.step";
+  if (const char* write = std::getenv("STITCHSIM_WRITE_PARTS");
+      write && std::string(write) == "1") {
+    std::string error;
+    ASSERT_TRUE(
+        geom::WriteBSplineCad({Skin()}, {"skin"}, part, geom::CadFormat::kStep, "MM", error))
+        << error;
+  }
+  EXPECT_LT(fs::file_size(part), 16u * 1024u);
+  const auto bundled = Load("wing_cover_step.yaml");
+  ASSERT_TRUE(bundled);
+  const geom::Surface& face = *bundled->surface;
+  EXPECT_NEAR(face.Domain().max.x(), 480 * kInch, 1e-6);
+  for (double fu : {0.0, 0.3, 1.0}) {
+    for (double fv : {0.0, 0.25, 0.5, 0.9, 1.0}) {
+      const Eigen::Vector3d p = face.Point(face.Domain().max.cwiseProduct(Eigen::Vector2d(fu, fv)));
+      const double y_in = p.y() / kInch;
+      EXPECT_NEAR(p.z(), kCamberPerIn * y_in * y_in * kInch, 1e-6) << fu << " " << fv;
+    }
+  }
+  const auto fixture = StepWingCover();
+  ASSERT_TRUE(fixture);
+  RasterSummary a, b;
+  testing::Plan(*fixture, StepWindow(*fixture, RasterStrategy::kJump), &a);
+  testing::Plan(*bundled, StepWindow(*bundled, RasterStrategy::kJump), &b);
+  EXPECT_EQ(a.stitches, b.stitches);
 }
 
 // The window of the STEP face verifies like wing_cover: every rule, the collision world
