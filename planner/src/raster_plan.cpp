@@ -96,9 +96,12 @@ class RowGrid {
       return;
     }
     const double u = box.center().x();
-    for (double v = v0_; v <= box.max().y() + 1e-9; v = NextV(s, u, v)) {
+    for (double v = v0_; v <= box.max().y() + 1e-9;) {
       vs_.push_back(v);
-      if (vs_.size() > static_cast<std::size_t>(limits::kMaxRasterStitches)) break;
+      const double next = NextV(s, u, v);
+      // A degenerate iso-line (no progress) or more rows than a programme may have: stop.
+      if (!(next > v) || vs_.size() > static_cast<std::size_t>(limits::kMaxRasterStitches)) break;
+      v = next;
     }
     rows_ = static_cast<long>(vs_.size());
   }
