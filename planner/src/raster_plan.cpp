@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "detail/raster_rows.h"
 #include "stitchsim/common/limits.h"
@@ -32,9 +33,10 @@ std::vector<std::pair<double, double>> FreeIntervals(const std::vector<scene::Fo
   return free;
 }
 
-// Height of a point above a height-field surface: z minus the surface height at its (x, y),
-// clamped into the domain.
+// Height of a point above the surface: on a height field z minus the surface height at its
+// (x, y), clamped into the domain; otherwise its signed distance from its closest point.
 double Above(const geom::Surface& s, const Eigen::Vector3d& p) {
+  if (!s.IsHeightField()) return s.Project(p).signed_distance_mm;
   const geom::Domain2 dom = s.Domain();
   return p.z() - s.Point(p.head<2>().cwiseMax(dom.min).cwiseMin(dom.max)).z();
 }
@@ -82,12 +84,64 @@ std::string Num(double v) {
   return buf;
 }
 
+// The rows' v. A height field: v0 + k * spacing (the spacing in y). Otherwise the rows are
+// `spacing` apart on the surface: each the exact 3D chord of one spacing from the one before,
+// along the iso-u line through the middle of the stitch region.
+class RowGrid {
+ public:
+  RowGrid(const geom::Surface& s, const Eigen::AlignedBox2d& box, double spacing)
+      : v0_(box.min().y()), spacing_(spacing) {
+    if (s.IsHeightField()) {
+      rows_ = static_cast<long>(std::floor(box.sizes().y() / spacing + 1e-9)) + 1;
+      return;
+    }
+    const double u = box.center().x();
+    for (double v = v0_; v <= box.max().y() + 1e-9;) {
+      vs_.push_back(v);
+      const double next = NextV(s, u, v);
+      // A degenerate iso-line (no progress) or more rows than a programme may have: stop.
+      if (!(next > v) || vs_.size() > static_cast<std::size_t>(limits::kMaxRasterStitches)) break;
+      v = next;
+    }
+    rows_ = static_cast<long>(vs_.size());
+  }
+  long Rows() const { return rows_; }
+  /// v of row r; +infinity past the last row of a surface-spaced grid.
+  double V(long r) const {
+    if (vs_.empty()) return v0_ + r * spacing_;
+    return r < rows_ ? vs_[static_cast<std::size_t>(r)] : std::numeric_limits<double>::infinity();
+  }
+  /// The first row at or above v.
+  long FirstAtOrAbove(double v) const {
+    if (vs_.empty()) return static_cast<long>(std::ceil((v - v0_) / spacing_ - 1e-9));
+    return static_cast<long>(std::lower_bound(vs_.begin(), vs_.end(), v - 1e-9 * spacing_) -
+                             vs_.begin());
+  }
+
+ private:
+  // v of the point one spacing (3D chord) beyond (u, v) along +v.
+  double NextV(const geom::Surface& s, double u, double v) const {
+    const Eigen::Vector3d p = s.Point({u, v});
+    double dv = spacing_ / std::max(s.Jacobian({u, v}).col(1).norm(), 1e-9);
+    for (int it = 0; it < 4; ++it) {
+      const double d = (s.Point({u, v + dv}) - p).norm();
+      if (d <= 0) break;
+      dv *= spacing_ / d;
+    }
+    return v + dv;
+  }
+
+  double v0_ = 0.0;
+  double spacing_ = 1.0;
+  long rows_ = 0;
+  std::vector<double> vs_;  // empty on a height field
+};
+
 std::vector<RasterRegion> JumpRegions(const std::vector<scene::Footprint>& fps,
-                                      const Eigen::AlignedBox2d& box, double spacing) {
+                                      const Eigen::AlignedBox2d& box, const RowGrid& grid) {
   std::vector<RasterRegion> out;
-  const long rows = static_cast<long>(std::floor(box.sizes().y() / spacing + 1e-9)) + 1;
-  for (long r = 0; r < rows; ++r) {
-    const double v = box.min().y() + r * spacing;
+  for (long r = 0; r < grid.Rows(); ++r) {
+    const double v = grid.V(r);
     RasterRegion reg;
     for (const auto& [a, b] : FreeIntervals(fps, v, box.min().x(), box.max().x())) {
       reg.pieces.push_back({r, v, a, b});
@@ -100,7 +154,7 @@ std::vector<RasterRegion> JumpRegions(const std::vector<scene::Footprint>& fps,
 // Bays: the grid cut at every footprint's u and v edges; cells ordered band by band (v),
 // snaking along u.
 std::vector<RasterRegion> BayRegions(const std::vector<scene::Footprint>& fps,
-                                     const Eigen::AlignedBox2d& box, double spacing) {
+                                     const Eigen::AlignedBox2d& box, const RowGrid& grid) {
   std::vector<double> us = {box.min().x(), box.max().x()};
   std::vector<double> vs = {box.min().y(), box.max().y() + 1e-6};
   for (const scene::Footprint& f : fps) {
@@ -119,13 +173,13 @@ std::vector<RasterRegion> BayRegions(const std::vector<scene::Footprint>& fps,
   vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
   std::vector<RasterRegion> out;
   for (std::size_t j = 0; j + 1 < vs.size(); ++j) {
-    const long r0 = static_cast<long>(std::ceil((vs[j] - box.min().y()) / spacing - 1e-9));
-    const long r1 = static_cast<long>(std::ceil((vs[j + 1] - box.min().y()) / spacing - 1e-9));
+    const long r0 = grid.FirstAtOrAbove(vs[j]);
+    const long r1 = grid.FirstAtOrAbove(vs[j + 1]);
     for (std::size_t ii = 0; ii + 1 < us.size(); ++ii) {
       const std::size_t i = j % 2 == 0 ? ii : us.size() - 2 - ii;
       RasterRegion reg;
       for (long r = r0; r < r1; ++r) {
-        const double v = box.min().y() + r * spacing;
+        const double v = grid.V(r);
         if (v > box.max().y() + 1e-9) break;
         for (const auto& [a, b] : FreeIntervals(fps, v, us[i], us[i + 1])) {
           reg.pieces.push_back({r, v, a, b});
@@ -148,9 +202,9 @@ std::optional<Setup> CheckSetup(const scene::Scene& scene, const RasterOptions& 
                                 DiagnosticSink& sink) {
   const SourceLocation where{scene.file.string(), 0, 0};
   const geom::Surface& surface = *scene.surface;
-  if (!surface.IsHeightField() || !surface.CoversDomain()) {
+  if (!surface.CoversDomain()) {
     sink.Error("plan-raster-surface", where,
-               "raster planning needs a height-field surface (plane or polynomial), not '" +
+               "raster planning needs a surface that covers its (u, v) domain, not '" +
                    surface.Kind() + "'");
     return std::nullopt;
   }
@@ -205,6 +259,25 @@ double KeepOutMm(const scene::Scene& scene) {
         std::max(spread_mm, n.through_mm.head<2>().norm() + slant * scene.preform_thickness_mm);
   }
   return std::max(spread_mm, scene.head.envelope ? scene.head.envelope->radius_mm : 0.0);
+}
+
+// The constraints' footprints in the surface's (u, v), grown by `grow_mm`; nullopt (reported
+// at the constraint) when one does not project onto the surface.
+std::optional<std::vector<scene::Footprint>> Footprints(const scene::Scene& scene, double grow_mm,
+                                                        DiagnosticSink& sink) {
+  std::vector<scene::Footprint> out;
+  for (const scene::Constraint& c : scene.constraints) {
+    std::string error;
+    std::optional<scene::Footprint> f =
+        scene::ConstraintFootprintOn(c, *scene.surface, grow_mm, error);
+    if (!f) {
+      sink.Error("plan-raster-footprint", c.where,
+                 "constraint '" + c.name + "' does not project onto the surface: " + error);
+      return std::nullopt;
+    }
+    out.push_back(std::move(*f));
+  }
+  return out;
 }
 
 // The tallest constraint's height above the surface (what a retracted head must clear);
@@ -290,7 +363,8 @@ class PassBuilder {
         pass.row_start = prev_row != piece.row;
         prev_row = piece.row;
         // Where the head is after the pass: its last stitch.
-        pos_ = surface_.Point({u_last, piece.v_mm});
+        pos_uv_ = {u_last, piece.v_mm};
+        pos_ = surface_.Point(pos_uv_);
         rotation_ = detail::StitchFrame(surface_, u_last, piece.v_mm, dir);
         have_pos_ = true;
         out.push_back(pass);
@@ -309,7 +383,7 @@ class PassBuilder {
     RasterTransit t;
     t.jump = force_retract;
     for (std::size_t i = 0; i < plan_.footprints.size() && !t.jump; ++i) {
-      t.jump = plan_.footprints[i].Crosses(pos_.head<2>(), to.head<2>());
+      t.jump = Crosses(plan_.footprints[i], pos_uv_, {u, pass.piece.v_mm});
     }
     if (t.jump) {
       t.lift_mm =
@@ -320,12 +394,23 @@ class PassBuilder {
     return t;
   }
 
+  // Off a height field a move that only grazes a footprint's edge (a row end at a bay edge to
+  // the next row's start there) does not cross it: the (u, v) footprints are not axis-exact, and
+  // the exact slab test would retract on rounding. A height field keeps the exact test.
+  bool Crosses(const scene::Footprint& f, const Eigen::Vector2d& a,
+               const Eigen::Vector2d& b) const {
+    if (surface_.IsHeightField()) return f.Crosses(a, b);
+    return f.SegmentDepth(a, b) > kGrazeMm;
+  }
+  static constexpr double kGrazeMm = 1e-6;
+
   const geom::Surface& surface_;
   const RasterPlan& plan_;
   const detail::RowStepper stepper_;
   double row_dir_ = 1.0;  // direction of the next row stitched (+u / -u)
   bool have_pos_ = false;
   Eigen::Vector3d pos_ = Eigen::Vector3d::Zero();           // last stitch
+  Eigen::Vector2d pos_uv_ = Eigen::Vector2d::Zero();        // its (u, v)
   Eigen::Matrix3d rotation_ = Eigen::Matrix3d::Identity();  // its tool frame
 };
 
@@ -360,13 +445,17 @@ std::optional<RasterPlan> PlanRaster(const scene::Scene& scene, const RasterOpti
   plan.heads = o.heads;
   plan.head_sections = setup->working.size() > 1 || o.heads > 1;
   plan.library = o.library;
-  plan.footprints = scene::ConstraintFootprints(scene, o.margin_mm + KeepOutMm(scene));
+  std::optional<std::vector<scene::Footprint>> footprints =
+      Footprints(scene, o.margin_mm + KeepOutMm(scene), sink);
+  if (!footprints) return std::nullopt;
+  plan.footprints = std::move(*footprints);
   const std::optional<double> tallest_mm = TallestConstraintMm(scene, sink);
   if (!tallest_mm) return std::nullopt;
   plan.flight_clearance_mm = *tallest_mm + o.lift_clearance_mm;
+  const RowGrid grid(*scene.surface, setup->box, o.row_spacing_mm);
   plan.regions = o.strategy == RasterStrategy::kJump
-                     ? JumpRegions(plan.footprints, setup->box, o.row_spacing_mm)
-                     : BayRegions(plan.footprints, setup->box, o.row_spacing_mm);
+                     ? JumpRegions(plan.footprints, setup->box, grid)
+                     : BayRegions(plan.footprints, setup->box, grid);
   // Stitches per region: the header declares the total (verify's program.stitch_count).
   const detail::RowStepper stepper(*scene.surface, o.pitch_mm);
   for (RasterRegion& r : plan.regions) {

@@ -51,6 +51,32 @@ RawBox RawBoxOf(const Constraint& c) {
   return b;
 }
 
+// Closest points of the box's corners and of points at most 10 mm apart along its 12 edges
+// (the box: centre, rotation, half extents), as (u, v) on `s`; false if one is not finite.
+bool ProjectBoxOutline(const geom::Surface& s, const Eigen::Vector3d& centre,
+                       const Eigen::Matrix3d& rotation, const Eigen::Vector3d& half,
+                       std::vector<Eigen::Vector2d>& uvs) {
+  constexpr double kStepMm = 10.0;
+  constexpr int kMaxSteps = 4000;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+    const int steps =
+        std::clamp(static_cast<int>(std::ceil(2.0 * half[axis] / kStepMm)), 1, kMaxSteps);
+    for (int corner = 0; corner < 4; ++corner) {
+      Eigen::Vector3d local = Eigen::Vector3d::Zero();
+      local[a] = (corner & 1) ? half[a] : -half[a];
+      local[b] = (corner & 2) ? half[b] : -half[b];
+      for (int k = 0; k <= steps; ++k) {
+        local[axis] = half[axis] * (2.0 * k / steps - 1.0);
+        const Eigen::Vector2d uv = s.Project(centre + rotation * local).uv;
+        if (!uv.allFinite()) return false;
+        uvs.push_back(uv);
+      }
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 double GrownBox::Depth(const Eigen::Vector3d& p) const {
@@ -152,6 +178,63 @@ std::vector<Footprint> ConstraintFootprints(const Scene& scene, double margin_mm
   out.reserve(scene.constraints.size());
   for (const Constraint& c : scene.constraints) out.push_back(ConstraintFootprint(c, margin_mm));
   return out;
+}
+
+std::optional<Footprint> ConstraintFootprintOn(const Constraint& c, const geom::Surface& s,
+                                               double margin_mm, std::string& error) {
+  if (s.IsHeightField()) return ConstraintFootprint(c, margin_mm);
+  const RawBox raw = RawBoxOf(c);
+  const Eigen::Vector3d centre = raw.from_mesh ? raw.mesh_centre : c.pose_mm.translation();
+  const geom::SurfaceProjection foot = s.Project(centre);
+  if (!foot.inside_domain || !foot.uv.allFinite()) {
+    error = "its centre's closest point on the surface lies outside the surface's domain";
+    return std::nullopt;
+  }
+  // Grown along the two box axes most tangent to the surface, not along its height.
+  int height_axis = 0;
+  for (int k = 1; k < 3; ++k) {
+    if (std::abs(raw.rotation.col(k).dot(foot.normal)) >
+        std::abs(raw.rotation.col(height_axis).dot(foot.normal)))
+      height_axis = k;
+  }
+  Eigen::Vector3d half = raw.half_mm;
+  for (int k = 0; k < 3; ++k) {
+    if (k != height_axis) half[k] += margin_mm;
+  }
+  std::vector<Eigen::Vector2d> uvs;
+  if (!ProjectBoxOutline(s, centre, raw.rotation, half, uvs)) {
+    error = "a point of its box has no closest point on the surface";
+    return std::nullopt;
+  }
+  // The first box axis across the height, mapped into (u, v) by the Jacobian's pseudo-inverse.
+  const Eigen::Matrix<double, 3, 2> j = s.Jacobian(foot.uv);
+  const Eigen::Matrix2d jtj = j.transpose() * j;
+  Eigen::Vector2d axis = Eigen::Vector2d::UnitX();
+  for (int k = 0; k < 3; ++k) {
+    if (k == height_axis) continue;
+    const Eigen::Vector2d d = jtj.ldlt().solve(j.transpose() * raw.rotation.col(k));
+    if (d.allFinite() && d.norm() > 1e-9) axis = d.normalized();
+    break;
+  }
+  Footprint f;
+  f.name = c.name;
+  f.axis_x = axis;
+  f.axis_y = Eigen::Vector2d(-axis.y(), axis.x());
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e300), hi = Eigen::Vector2d::Constant(-1e300);
+  for (const Eigen::Vector2d& uv : uvs) {
+    const Eigen::Vector2d q((uv - foot.uv).dot(f.axis_x), (uv - foot.uv).dot(f.axis_y));
+    lo = lo.cwiseMin(q);
+    hi = hi.cwiseMax(q);
+  }
+  const Eigen::Vector2d mid = 0.5 * (lo + hi);
+  f.centre = foot.uv + mid.x() * f.axis_x + mid.y() * f.axis_y;
+  f.half_mm = 0.5 * (hi - lo);
+  return f;
+}
+
+Eigen::Vector2d FootprintPlanePoint(const geom::Surface& s, const Eigen::Vector3d& p) {
+  if (s.IsHeightField()) return p.head<2>();
+  return s.Project(p).uv;
 }
 
 }  // namespace stitchsim::scene

@@ -6,10 +6,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "stitchsim/planner/raster_planner.h"
-#include "stitchsim/sim/collision.h"
-#include "stitchsim/sim/executor.h"
-#include "stitchsim/verify/verifier.h"
+#include "raster_test_support.h"
 
 namespace stitchsim::planner {
 namespace {
@@ -36,51 +33,9 @@ RasterOptions SmallWindow(const scene::Scene& s, RasterStrategy strategy) {
   return o;
 }
 
-std::string Plan(const scene::Scene& s, const RasterOptions& o, RasterSummary* summary = nullptr) {
-  DiagnosticSink sink;
-  std::ostringstream out;
-  const auto sum = WriteRasterProgram(s, o, program::Dialect::Default(), out, sink);
-  EXPECT_TRUE(sum.has_value());
-  EXPECT_EQ(sink.ErrorCount(), 0u);
-  if (sum && summary) *summary = *sum;
-  return out.str();
-}
-
-verify::Report VerifyText(const scene::Scene& s, const std::string& text, double pitch_mm) {
-  DiagnosticSink sink;
-  auto robot = sim::LoadRobotModel(s.cell_urdf, sink);
-  EXPECT_TRUE(robot.has_value());
-  const sim::CellSetup cell = sim::MakeCellSetup(*robot, s);
-  const process::ProcessModel model = process::MakeProcessModel(s, pitch_mm);
-  // With the collision world: the head must clear the stringers and intercostals beside the
-  // rows, while turning at a bay edge and while flying a jump.
-  auto world = sim::CollisionWorld::Create(s, *robot, sink);
-  EXPECT_NE(world, nullptr);
-  const trace::CellDescription cell_description = sim::DescribeCell(*robot, world.get());
-  verify::RuleContext ctx{&s, &cell_description, &model};
-  verify::Verifier verifier(ctx, false);
-  std::istringstream in(text);
-  sim::ExecuteOptions options = sim::ExecuteOptionsFor(s);
-  options.collision = world.get();
-  sim::ExecuteProgram(cell, model, program::Dialect::Default(), in, "raster.nc", options, sink,
-                      verifier);
-  EXPECT_EQ(sink.ErrorCount(), 0u);
-  verify::Report report;
-  verifier.Finish(report);
-  return report;
-}
-
-std::string Errors(const verify::Report& r) {
-  std::string s;
-  for (const auto& rule : r.rules) {
-    for (const auto& f : rule.findings) {
-      if (f.severity != verify::FindingSeverity::kError) continue;
-      s += rule.id + " line " + std::to_string(f.line) + ": " + f.message + "\n";
-      if (s.size() > 2000) return s;
-    }
-  }
-  return s;
-}
+using testing::Errors;
+using testing::Plan;
+using testing::VerifyText;
 
 // The plan is data and the writer follows it: the summary the writer counts equals what the
 // plan holds, the programme's first pass has no transit, every jump flies at least the flight

@@ -7,9 +7,7 @@
 #include <sstream>
 #include <vector>
 
-#include "stitchsim/planner/raster_planner.h"
-#include "stitchsim/sim/executor.h"
-#include "stitchsim/verify/verifier.h"
+#include "../planner/raster_test_support.h"
 
 namespace stitchsim::verify {
 namespace {
@@ -36,18 +34,8 @@ Fixture Load() {
   return f;
 }
 
-std::vector<std::string> Lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);) out.push_back(l);
-  return out;
-}
-
-std::string Join(const std::vector<std::string>& lines) {
-  std::string s;
-  for (const auto& l : lines) s += l + "\n";
-  return s;
-}
+using planner::testing::Join;
+using planner::testing::Lines;
 
 const RuleSummary* Crossing(const Report& r) {
   for (const auto& rule : r.rules) {

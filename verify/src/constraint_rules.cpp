@@ -1,10 +1,15 @@
 // constraint.crossing (seed 001): no needle penetration inside a constraint's footprint, and
 // no move with the needles down (stitching on, head not retracted) across one. The footprint
-// is the raster planner's (scene/footprint.h): on a height-field surface the constraint's box
-// projected on the part's (x, y) plane and grown by a margin, otherwise the grown box in 3D.
+// is the raster planner's (scene/footprint.h), grown by the rule's margin: on a height-field
+// surface the constraint's box projected on the part's (x, y) plane; on any other surface the
+// box projected onto the surface, in its (u, v), where points and moves are judged by their
+// closest points on the surface; the grown box in 3D for a constraint that does not project.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <utility>
+#include <vector>
 
 #include "stitchsim/scene/footprint.h"
 #include "stitchsim/verify/rule.h"
@@ -12,12 +17,18 @@
 namespace stitchsim::verify {
 namespace {
 
-// A constraint's footprint: `outline` on a height-field surface, `box` otherwise.
+// A constraint's footprint: `outline` in the footprint plane (x, y) or (u, v) where the
+// constraint projects onto the surface, else `box` in 3D.
 struct Box {
   std::string name;
-  scene::Footprint outline;
+  std::optional<scene::Footprint> outline;
   scene::GrownBox box;
 };
+
+// A move of the needles down is judged in the (u, v) plane in pieces of at most this length,
+// each piece's ends mapped by their closest points (a long move follows the surface's curve).
+constexpr double kUvPieceMm = 10.0;
+constexpr int kMaxUvPieces = 256;
 
 class ConstraintCrossingRule final : public Rule {
  public:
@@ -28,18 +39,23 @@ class ConstraintCrossingRule final : public Rule {
              "mm") {
     margin_mm_ = ctx.scene->limits.Value(scene::LimitKey::kConstraintMarginMm);
     summary_.error_limit = 0.0;
-    planar_ = ctx.scene->surface && ctx.scene->surface->IsHeightField();
+    surface_ = ctx.scene->surface.get();
+    planar_ = surface_ && surface_->IsHeightField();
     for (const scene::Constraint& c : ctx.scene->constraints) {
-      boxes_.push_back(
-          {c.name, scene::ConstraintFootprint(c, margin_mm_), scene::ConstraintBox(c, margin_mm_)});
+      Box b{c.name, std::nullopt, scene::ConstraintBox(c, margin_mm_)};
+      std::string error;
+      if (surface_) b.outline = scene::ConstraintFootprintOn(c, *surface_, margin_mm_, error);
+      boxes_.push_back(std::move(b));
     }
   }
 
   void OnLine(const trace::LineRecord& l) override {
     if (!l.stitching || l.head_retracted) return;
     Counted();
+    const Eigen::Vector3d a = l.from.translation(), e = l.to.translation();
+    if (!planar_) MovePieces(a, e);
     for (const Box& b : boxes_) {
-      const double depth = SegmentDepth(b, l.from.translation(), l.to.translation());
+      const double depth = SegmentDepth(b, a, e);
       if (depth >= 0.0) {
         char msg[256];
         std::snprintf(msg, sizeof(msg),
@@ -54,12 +70,15 @@ class ConstraintCrossingRule final : public Rule {
 
   void OnPenetration(const PenetrationRecord& p) override {
     Counted();
+    // Each point's place in the footprint plane, found once for every constraint.
+    points_.clear();
+    for (const auto& pt : p.points) {
+      if (pt) points_.push_back({*pt, PlanePoint(*pt)});
+    }
+    points_.push_back({p.foot.point, PlanePoint(p.foot.point)});
     for (const Box& b : boxes_) {
       double worst = -1.0;
-      for (const auto& pt : p.points) {
-        if (pt) worst = std::max(worst, PointDepth(b, *pt));
-      }
-      worst = std::max(worst, PointDepth(b, p.foot.point));
+      for (const auto& [pt, uv] : points_) worst = std::max(worst, PointDepth(b, pt, uv));
       if (worst >= 0.0) {
         char msg[256];
         std::snprintf(msg, sizeof(msg),
@@ -72,18 +91,40 @@ class ConstraintCrossingRule final : public Rule {
   }
 
  private:
-  // How far inside (>= 0) the footprint the point is; negative outside.
-  double PointDepth(const Box& b, const Eigen::Vector3d& p) const {
-    return planar_ ? b.outline.Depth(p.head<2>()) : b.box.Depth(p);
+  Eigen::Vector2d PlanePoint(const Eigen::Vector3d& p) const {
+    return planar_ || !surface_ ? Eigen::Vector2d(p.head<2>())
+                                : scene::FootprintPlanePoint(*surface_, p);
   }
-  // >= 0 if the segment meets the footprint (slab test), negative if not.
+  // How far inside (>= 0) the footprint the point (at `plane` in the footprint plane) is;
+  // negative outside.
+  double PointDepth(const Box& b, const Eigen::Vector3d& p, const Eigen::Vector2d& plane) const {
+    return b.outline ? b.outline->Depth(plane) : b.box.Depth(p);
+  }
+  // The move a-e off a height field: its pieces' ends in (u, v), into uv_pieces_.
+  void MovePieces(const Eigen::Vector3d& a, const Eigen::Vector3d& e) {
+    const int n =
+        std::clamp(static_cast<int>(std::ceil((e - a).norm() / kUvPieceMm)), 1, kMaxUvPieces);
+    uv_pieces_.clear();
+    for (int k = 0; k <= n; ++k) uv_pieces_.push_back(PlanePoint(a + (e - a) * (double(k) / n)));
+  }
+  // >= 0 if the segment meets the footprint (slab test; off a height field, the deepest of its
+  // pieces in (u, v)), negative if not.
   double SegmentDepth(const Box& b, const Eigen::Vector3d& a, const Eigen::Vector3d& e) const {
-    return planar_ ? b.outline.SegmentDepth(a.head<2>(), e.head<2>()) : b.box.SegmentDepth(a, e);
+    if (!b.outline) return b.box.SegmentDepth(a, e);
+    if (planar_) return b.outline->SegmentDepth(a.head<2>(), e.head<2>());
+    double depth = -1.0;
+    for (std::size_t k = 0; k + 1 < uv_pieces_.size(); ++k) {
+      depth = std::max(depth, b.outline->SegmentDepth(uv_pieces_[k], uv_pieces_[k + 1]));
+    }
+    return depth;
   }
 
   double margin_mm_ = 1.0;
   bool planar_ = true;
+  const geom::Surface* surface_ = nullptr;
   std::vector<Box> boxes_;
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector2d>> points_;  // penetration, plane
+  std::vector<Eigen::Vector2d> uv_pieces_;                           // this move off a height field
 };
 
 }  // namespace
