@@ -166,27 +166,20 @@ TopoDS_Face BSplineFace(const BSplineSpec& spec, std::string& error) {
 bool WriteBSplineCad(const std::vector<BSplineSpec>& faces, const std::vector<std::string>& names,
                      const std::filesystem::path& file, CadFormat format, const std::string& unit,
                      std::string& error) {
-  // The STEP writer states the unit but does not convert to it (OCCT 7.6): scale the net
-  // here. The IGES writer converts from millimetres itself.
-  double per_mm = 0;
-  if (unit == "MM") per_mm = 1;
-  if (unit == "CM") per_mm = 0.1;
-  if (unit == "M") per_mm = 0.001;
-  if (unit == "INCH") per_mm = 1 / 25.4;
-  if (per_mm == 0) {
+  // Both writers convert from the session's millimetres to `unit` themselves. The STEP writer
+  // takes its unit from the session parameter when it is constructed (OCCT 7.6), so the
+  // parameter is set first: set after, the first writer of a process states the unit without
+  // converting and every later one converts with the unit left by the one before.
+  if (unit != "MM" && unit != "CM" && unit != "M" && unit != "INCH") {
     error = "unit must be MM, CM, M or INCH, got '" + unit + "'";
     return false;
   }
-  if (format == CadFormat::kIges) per_mm = 1;
   QuietKernel();
   try {
     BRep_Builder b;
     TopoDS_Compound c;
     b.MakeCompound(c);
-    for (BSplineSpec spec : faces) {
-      for (auto& row : spec.poles) {
-        for (auto& p : row) p *= per_mm;
-      }
+    for (const BSplineSpec& spec : faces) {
       const TopoDS_Face f = BSplineFace(spec, error);
       if (f.IsNull()) return false;
       b.Add(c, f);
@@ -201,9 +194,9 @@ bool WriteBSplineCad(const std::vector<BSplineSpec>& faces, const std::vector<st
       }
       return true;
     }
-    STEPControl_Writer writer;
     Interface_Static::SetCVal("xstep.cascade.unit", "MM");
     Interface_Static::SetCVal("write.step.unit", unit.c_str());
+    STEPControl_Writer writer;
     if (writer.Transfer(c, STEPControl_AsIs) != IFSelect_RetDone) {
       error = "the kernel cannot translate the faces to STEP";
       return false;

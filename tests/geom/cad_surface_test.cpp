@@ -215,6 +215,26 @@ TEST(CadFile, StepRoundTripInAnotherUnitWithNamedFaces) {
   std::filesystem::remove_all(dir);
 }
 
+// The kernel's STEP writer keeps session state between writers: each unit, written again and
+// after other units in the same process, reads back at the same size.
+TEST(CadFile, StepUnitsRoundTripAgainAndAgain) {
+  const auto dir = std::filesystem::temp_directory_path() / "stitchsim_cad_geom_units_test";
+  std::filesystem::create_directories(dir);
+  std::string err;
+  const BSplineSpec cyl = CylinderQuarter(300, 400);
+  const auto original = MakeBSplineSurface(cyl, err);
+  int n = 0;
+  for (const char* unit : {"MM", "INCH", "INCH", "CM", "M", "INCH", "MM", "MM"}) {
+    SCOPED_TRACE(std::string(unit) + " #" + std::to_string(n));
+    const auto file = dir / ("part" + std::to_string(n++) + ".step");
+    ASSERT_TRUE(WriteBSplineCad({cyl}, {}, file, CadFormat::kStep, unit, err)) << err;
+    const auto s = ReadCadFace(file, CadFormat::kStep, {}, err);
+    ASSERT_TRUE(s) << err;
+    ExpectSameSurface(*s, *original);
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CadFile, IgesRoundTripInInches) {
   const auto dir = std::filesystem::temp_directory_path() / "stitchsim_cad_geom_iges_test";
   std::filesystem::create_directories(dir);

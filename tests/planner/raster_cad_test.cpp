@@ -56,10 +56,9 @@ std::string ReadText(const fs::path& p) {
 std::unique_ptr<scene::Scene> StepWingCover() {
   const fs::path dir = scene::testing::Folder("raster_cad", "wing");
   std::string error;
-  // In millimetres: WriteBSplineCad in "INCH" scales the net twice from its second call in a
-  // process on (OCCT 7.6), which would make the skin 25.4 times too small.
+  // In inches, as the scene: the step kind reads the file's unit.
   EXPECT_TRUE(geom::WriteBSplineCad({Skin()}, {"skin"}, dir / "wing_skin.step",
-                                    geom::CadFormat::kStep, "MM", error))
+                                    geom::CadFormat::kStep, "INCH", error))
       << error;
   std::string text = ReadText(kSource / "scenes" / "wing_cover.yaml");
   const std::size_t surface = text.find("\nsurface:\n"), preform = text.find("\npreform:");
