@@ -10,20 +10,13 @@
 #include <filesystem>
 #include <string>
 
+#include "seed_wing.h"
 #include "stitchsim/geom/wing_surface.h"
 
 namespace stitchsim::geom {
 namespace {
 
-WingSpec SeedWing() {
-  WingSpec spec;
-  spec.root_code = "23014";
-  spec.root_chord_mm = 2258.1;
-  spec.tip_code = "23012";
-  spec.tip_chord_mm = 1130.3;
-  spec.span_mm = 7310.1;
-  return spec;
-}
+WingSpec SeedWing() { return testing::SeedWingSpec(); }
 
 // Largest distance between `a` and `b` at the same (u, v) on a grid over a's domain.
 double SameParameterDistance(const Surface& a, const Surface& b, int n = 40) {

@@ -6,28 +6,14 @@
 #include <cmath>
 #include <string>
 
+#include "seed_wing.h"
+
 namespace stitchsim::geom {
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+WingSpec SeedWing() { return testing::SeedWingSpec(); }
 
-WingSpec SeedWing() {
-  WingSpec spec;
-  spec.root_code = "23014";
-  spec.root_chord_mm = 2258.1;
-  spec.tip_code = "23012";
-  spec.tip_chord_mm = 1130.3;
-  spec.span_mm = 7310.1;
-  return spec;
-}
-
-WingSpec SweptTwistedSeedWing() {
-  WingSpec spec = SeedWing();
-  spec.sweep_rad = 12.0 * kDeg;
-  spec.dihedral_rad = 4.0 * kDeg;
-  spec.washout_rad = 3.0 * kDeg;
-  return spec;
-}
+WingSpec SweptTwistedSeedWing() { return testing::SweptTwistedSeedWingSpec(); }
 
 WingSurface MakeOrFail(const WingSpec& spec, WingSkin skin) {
   std::string error;

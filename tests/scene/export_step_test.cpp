@@ -2,11 +2,8 @@
 // IGES, in other units), read back through the `step` kind's reader and compared with the
 // scene's surface; bad input exits 2 and writes nothing.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "scene_test_support.h"
@@ -18,18 +15,8 @@ namespace {
 
 namespace fs = std::filesystem;
 const fs::path kSource = STITCHSIM_SOURCE_DIR;
-
-int RunCli(const std::string& args, const fs::path& out_file) {
-  const std::string cmd = std::string(STITCHSIM_BINARY_DIR) + "/app/stitchsim " + args + " >" +
-                          out_file.string() + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
+using testing::ReadAll;
+using testing::RunCli;
 
 std::unique_ptr<Scene> LoadOrFail(const fs::path& file) {
   DiagnosticSink sink;

@@ -2,13 +2,11 @@
 // the geom loft, and bad input is reported at the scene entry's file:line (exit 2 from the
 // command line).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
+#include "../geom/seed_wing.h"
 #include "scene_test_support.h"
 #include "stitchsim/geom/naca.h"
 #include "stitchsim/geom/wing_surface.h"
@@ -20,6 +18,10 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path Folder(const std::string& name) { return testing::Folder("wing_scene", name); }
+using testing::Load;
+using testing::Loaded;
+using testing::ReadAll;
+using testing::RunCli;
 using testing::Write;
 
 const std::string kPaths = "paths: [{name: a, type: line, from: [10, 10], to: [60, 10]}]\n";
@@ -38,35 +40,6 @@ std::string SeedScene(const std::string& extra = "") {
                    "7310.1", extra);
 }
 
-struct Loaded {
-  std::unique_ptr<Scene> scene;
-  std::string code;
-  int line = 0;
-  std::string message;
-};
-
-Loaded Load(const fs::path& file) {
-  DiagnosticSink sink;
-  Loaded out;
-  out.scene = LoadScene(file, sink);
-  if (!sink.Diagnostics().empty()) {
-    out.code = sink.Diagnostics().front().code;
-    out.line = sink.Diagnostics().front().location.line;
-    out.message = FormatDiagnostic(sink.Diagnostics().front());
-  }
-  return out;
-}
-
-geom::WingSpec SeedSpec() {
-  geom::WingSpec spec;
-  spec.root_code = "23014";
-  spec.root_chord_mm = 2258.1;
-  spec.tip_code = "23012";
-  spec.tip_chord_mm = 1130.3;
-  spec.span_mm = 7310.1;
-  return spec;
-}
-
 TEST(WingScene, TheSeedWingIsTheLoftOfItsSections) {
   const fs::path dir = Folder("seed");
   Write(dir / "s.yaml", SeedScene());
@@ -75,7 +48,7 @@ TEST(WingScene, TheSeedWingIsTheLoftOfItsSections) {
   ASSERT_TRUE(r.scene->surface);
   EXPECT_EQ(r.scene->surface->Kind(), "wing");
   std::string error;
-  const std::optional<geom::Wing> wing = geom::Wing::Make(SeedSpec(), error);
+  const std::optional<geom::Wing> wing = geom::Wing::Make(geom::testing::SeedWingSpec(), error);
   ASSERT_TRUE(wing) << error;
   const Eigen::Vector2d len = r.scene->surface->Domain().max;
   for (int i = 0; i <= 20; ++i) {
@@ -155,19 +128,6 @@ TEST(WingScene, BadWingsAreReportedAtTheirLine) {
     EXPECT_EQ(r.line, c.line) << r.message;
     EXPECT_NE(r.message.find(c.what), std::string::npos) << r.message;
   }
-}
-
-// Runs `stitchsim args` with stdout and stderr to files; the exit code.
-int RunCli(const std::string& args, const fs::path& err_file) {
-  const std::string cmd = std::string(STITCHSIM_BINARY_DIR) + "/app/stitchsim " + args +
-                          " >/dev/null 2>" + err_file.string();
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 TEST(WingScene, TheCommandLineExitsTwoAtTheBadEntry) {
