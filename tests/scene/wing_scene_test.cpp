@@ -150,5 +150,21 @@ TEST(WingScene, TheCommandLineExitsTwoAtTheBadEntry) {
   EXPECT_FALSE(fs::exists(dir / "a.nc"));
 }
 
+// scenes/naca_wing.yaml: an AFP course over the upper skin at mid-span plans and verifies
+// clean (the reachable window its comments name).
+TEST(WingScene, TheBundledWingVerifiesACourseOnItsUpperSkin) {
+  const fs::path dir = Folder("bundled");
+  const fs::path scene = fs::path(STITCHSIM_SOURCE_DIR) / "scenes" / "naca_wing.yaml";
+  const fs::path log = dir / "log.txt";
+  ASSERT_EQ(RunCli("plan afp --scene " + scene.string() + " --path upper_mid -o " +
+                       (dir / "c.nc").string(),
+                   log),
+            0)
+      << ReadAll(log);
+  EXPECT_EQ(RunCli("verify " + (dir / "c.nc").string() + " --scene " + scene.string(), log), 0)
+      << ReadAll(log);
+  EXPECT_NE(ReadAll(log).find("PASS"), std::string::npos) << ReadAll(log);
+}
+
 }  // namespace
 }  // namespace stitchsim::scene
