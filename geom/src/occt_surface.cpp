@@ -56,6 +56,9 @@ class OcctSurface final : public Surface {
   }
 
   std::string Kind() const override { return kind_; }
+  const Handle(Geom_Surface) & Geometry() const { return s_; }
+  const ParamBox& Box() const { return box_; }
+  bool Flipped() const { return sign_ < 0; }
   Domain2 Domain() const override { return dom_; }
 
   Eigen::Vector3d Point(const Eigen::Vector2d& uv) const override {
@@ -283,6 +286,16 @@ std::unique_ptr<Surface> MakeOcctSurface(const Handle(Geom_Surface) & surface, c
   auto s = std::make_unique<OcctSurface>(surface, box, flip_normal, std::move(kind));
   if (!s->Init(error)) return nullptr;
   return s;
+}
+
+bool OcctGeometry(const Surface& surface, Handle(Geom_Surface) & geometry, ParamBox& box,
+                  bool& flip_normal) {
+  const auto* s = dynamic_cast<const OcctSurface*>(&surface);
+  if (!s) return false;
+  geometry = s->Geometry();
+  box = s->Box();
+  flip_normal = s->Flipped();
+  return true;
 }
 
 }  // namespace detail

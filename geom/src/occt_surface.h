@@ -22,6 +22,11 @@ struct ParamBox {
 std::unique_ptr<Surface> MakeOcctSurface(const Handle(Geom_Surface) & surface, const ParamBox& box,
                                          bool flip_normal, std::string kind, std::string& error);
 
+/// The kernel surface behind `surface`, its parameter box and whether its normal is flipped,
+/// when `surface` is one MakeOcctSurface made; false otherwise.
+bool OcctGeometry(const Surface& surface, Handle(Geom_Surface) & geometry, ParamBox& box,
+                  bool& flip_normal);
+
 /// The kernel B-spline of `spec` (validated), or null with `error` set.
 Handle(Geom_BSplineSurface) BuildBSpline(const BSplineSpec& spec, std::string& error);
 

@@ -1,8 +1,12 @@
 #include "cad_surface_reader.h"
 
+#include <cmath>
+#include <initializer_list>
 #include <vector>
 
 #include "stitchsim/geom/cad_surface.h"
+#include "stitchsim/geom/naca.h"
+#include "stitchsim/geom/wing_surface.h"
 
 namespace stitchsim::scene::detail {
 namespace {
@@ -155,16 +159,101 @@ std::unique_ptr<geom::Surface> ReadPartFace(YamlReader& r, const YAML::Node& s,
   return out;
 }
 
+// A wing section map {naca: "23014", chord: ...}: its code and chord (mm) into `code`, `chord`.
+bool ReadSection(YamlReader& r, const YAML::Node& s, const char* key, LengthUnit unit,
+                 std::string& code, double& chord_mm) {
+  auto n = r.Child(s, key, true);
+  if (!n || !r.ExpectMap(*n, key)) return false;
+  r.CheckKeys(*n, {"naca", "chord"}, std::string("wing ") + key);
+  auto cn = r.Child(*n, "naca", true);
+  auto ln = r.Child(*n, "chord", true);
+  if (!cn || !ln) return false;
+  auto text = r.String(*cn, "naca");
+  if (!text) return false;
+  std::string error;
+  if (!geom::ParseNaca(*text, error)) {
+    r.Error(*cn, "bad-value", std::string("wing ") + key + " section: " + error);
+    return false;
+  }
+  code = *text;
+  auto chord = r.Length(*ln, unit, "chord");
+  if (!chord || !r.Positive(*ln, *chord, std::string(key) + ".chord")) return false;
+  chord_mm = *chord;
+  return true;
+}
+
+// An optional angle in degrees, strictly inside (-90, 90), into radians.
+bool ReadAngle(YamlReader& r, const YAML::Node& s, const char* key, double& rad) {
+  auto n = r.Child(s, key, false);
+  if (!n) return true;
+  auto deg = r.Number(*n, key);
+  if (!deg) return false;
+  if (!(std::abs(*deg) < 90.0)) {
+    r.Error(*n, "out-of-range", std::string(key) + " must lie strictly between -90 and 90");
+    return false;
+  }
+  rad = DegToRad(*deg);
+  return true;
+}
+
+// One of `names` at optional `key` (the first is the default); its index, or -1 reported.
+int ReadChoice(YamlReader& r, const YAML::Node& s, const char* key,
+               std::initializer_list<const char*> names) {
+  auto n = r.Child(s, key, false);
+  if (!n) return 0;
+  auto text = r.String(*n, key);
+  if (!text) return -1;
+  int i = 0;
+  std::string list;
+  for (const char* name : names) {
+    if (*text == name) return i;
+    list += (i++ ? ", " : "") + std::string(name);
+  }
+  r.Error(*n, "bad-value", std::string(key) + " must be one of " + list + ", got '" + *text + "'");
+  return -1;
+}
+
+std::unique_ptr<geom::Surface> ReadWing(YamlReader& r, const YAML::Node& s, LengthUnit unit) {
+  r.CheckKeys(s,
+              {"type", "root", "tip", "span", "sweep_deg", "dihedral_deg", "twist_deg",
+               "trailing_edge", "skin"},
+              "wing surface");
+  geom::WingSpec spec;
+  bool ok = ReadSection(r, s, "root", unit, spec.root_code, spec.root_chord_mm);
+  ok = ReadSection(r, s, "tip", unit, spec.tip_code, spec.tip_chord_mm) && ok;
+  if (auto n = r.Child(s, "span", true)) {
+    auto span = r.Length(*n, unit, "span");
+    ok = span && r.Positive(*n, *span, "span") && ok;
+    if (span) spec.span_mm = *span;
+  } else {
+    ok = false;
+  }
+  ok = ReadAngle(r, s, "sweep_deg", spec.sweep_rad) && ok;
+  ok = ReadAngle(r, s, "dihedral_deg", spec.dihedral_rad) && ok;
+  ok = ReadAngle(r, s, "twist_deg", spec.washout_rad) && ok;
+  const int edge = ReadChoice(r, s, "trailing_edge", {"closed", "open"});
+  const int skin = ReadChoice(r, s, "skin", {"full", "upper", "lower"});
+  if (!ok || edge < 0 || skin < 0) return nullptr;
+  spec.trailing_edge = edge == 0 ? geom::TrailingEdge::kClosed : geom::TrailingEdge::kOpen;
+  const geom::WingSkin skins[] = {geom::WingSkin::kFull, geom::WingSkin::kUpper,
+                                  geom::WingSkin::kLower};
+  std::string err;
+  geom::WingSurface w = geom::MakeWingSurface(spec, skins[skin], err);
+  if (!w.surface) r.Error(s, "bad-wing", "wing surface: " + err);
+  return std::move(w.surface);
+}
+
 }  // namespace
 
 bool IsCadSurfaceType(const std::string& type) {
-  return type == "bspline" || type == "step" || type == "iges";
+  return type == "bspline" || type == "step" || type == "iges" || type == "wing";
 }
 
 std::unique_ptr<geom::Surface> ReadCadSurface(YamlReader& r, const YAML::Node& s,
                                               const std::string& type, LengthUnit unit,
                                               const FileRefPolicy& files) {
   if (type == "bspline") return ReadBSpline(r, s, unit);
+  if (type == "wing") return ReadWing(r, s, unit);
   return ReadPartFace(r, s, type, files);
 }
 

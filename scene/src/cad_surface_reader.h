@@ -1,6 +1,6 @@
 #pragma once
 // Private to scene: reads the CAD surface kinds of a scene's `surface` map (bspline, step,
-// iges) into OCCT-backed geom surfaces, reporting problems at their file:line.
+// iges, wing) into OCCT-backed geom surfaces, reporting problems at their file:line.
 
 #include <memory>
 #include <string>

@@ -235,7 +235,8 @@ class SceneLoader {
     } else {
       r_.Error(
           *type_node, "bad-value",
-          "surface.type must be plane, cylinder, polynomial, mesh, bspline, step or iges, got '" +
+          "surface.type must be plane, cylinder, polynomial, mesh, bspline, step, iges or wing, "
+          "got '" +
               *type + "'");
     }
   }

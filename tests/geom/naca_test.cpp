@@ -9,6 +9,8 @@
 #include <limits>
 #include <string>
 
+#include "seed_wing.h"
+
 namespace stitchsim::geom {
 namespace {
 
@@ -298,24 +300,9 @@ TEST(NacaSpacing, SeligCoordinatesFollowTheContour) {
   EXPECT_GT(points.front().y(), points.back().y());  // open trailing edge, upper first
 }
 
-WingSpec SeedWing() {
-  WingSpec spec;
-  spec.root_code = "23014";
-  spec.root_chord_mm = 2258.1;
-  spec.tip_code = "23012";
-  spec.tip_chord_mm = 1130.3;
-  spec.span_mm = 7310.1;
-  return spec;
-}
+WingSpec SeedWing() { return testing::SeedWingSpec(); }
 
-// The seed's wing with the angles the paper leaves open set to values that test each term.
-WingSpec SweptTwistedSeedWing() {
-  WingSpec spec = SeedWing();
-  spec.sweep_rad = 12.0 * kDeg;
-  spec.dihedral_rad = 4.0 * kDeg;
-  spec.washout_rad = 3.0 * kDeg;
-  return spec;
-}
+WingSpec SweptTwistedSeedWing() { return testing::SweptTwistedSeedWingSpec(); }
 
 Wing MakeOrFail(const WingSpec& spec) {
   std::string error;

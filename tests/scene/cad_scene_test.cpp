@@ -21,6 +21,9 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path Folder(const std::string& name) { return testing::Folder("cad_scene", name); }
+using testing::Load;
+using testing::Loaded;
+using testing::RunCli;
 using testing::Write;
 
 // Scene head; the surface map starts on line 6.
@@ -41,25 +44,6 @@ geom::BSplineSpec Bump() {
   s.poles = {
       {{-100, -50, 0}, {-100, 50, 0}}, {{0, -50, 40}, {0, 50, 40}}, {{100, -50, 0}, {100, 50, 0}}};
   return s;
-}
-
-struct Loaded {
-  std::unique_ptr<Scene> scene;
-  std::string code;
-  int line = 0;
-  std::string message;
-};
-
-Loaded Load(const fs::path& file) {
-  DiagnosticSink sink;
-  Loaded out;
-  out.scene = LoadScene(file, sink);
-  if (!sink.Diagnostics().empty()) {
-    out.code = sink.Diagnostics().front().code;
-    out.line = sink.Diagnostics().front().location.line;
-    out.message = FormatDiagnostic(sink.Diagnostics().front());
-  }
-  return out;
 }
 
 TEST(CadScene, BSplineInInchesMatchesTheSameNetInMillimetres) {
@@ -223,14 +207,6 @@ TEST(CadScene, BadPartFilesAreReportedAtTheirLine) {
   }
 }
 
-// Runs `stitchsim args` with stdout and stderr to files; the exit code.
-int RunCli(const std::string& args, const fs::path& err_file) {
-  const std::string cmd = std::string(STITCHSIM_BINARY_DIR) + "/app/stitchsim " + args +
-                          " >/dev/null 2>" + err_file.string();
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 TEST(CadScene, TheCommandLinePlansOnAStepFaceAndExitsTwoOnABadOne) {
   const fs::path dir = Folder("cli");
   WritePart(dir / "part.step");
@@ -246,8 +222,7 @@ TEST(CadScene, TheCommandLinePlansOnAStepFaceAndExitsTwoOnABadOne) {
                        (dir / "b.nc").string(),
                    err),
             2);
-  std::ifstream in(err);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string text = testing::ReadAll(err);
   EXPECT_NE(text.find((dir / "bad.yaml").string() + ":6:"), std::string::npos) << text;
   EXPECT_NE(text.find("out of range"), std::string::npos) << text;
 }
