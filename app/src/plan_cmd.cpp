@@ -409,6 +409,7 @@ void AddPlanCommand(CLI::App& app, int& exit_code) {
   ras_cmd->add_option("--dialect", ras->dialect, "Dialect YAML file (default: built-in)");
   AddScenePathFlag(*ras_cmd);
   ras_cmd->callback([ras, &exit_code] { exit_code = RunPlanRaster(*ras); });
+  AddPlanPlyCommand(*plan, exit_code);
 }
 
 }  // namespace stitchsim::app
