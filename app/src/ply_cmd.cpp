@@ -19,8 +19,7 @@ struct PlanPlyArgs {
   std::string tows_csv;
 };
 
-int WritePlyOutputs(const scene::Scene& scene, const planner::PlyPlan& plan,
-                    const PlanPlyArgs& a) {
+int WritePlyOutputs(const scene::Scene& scene, const planner::PlyPlan& plan, const PlanPlyArgs& a) {
   std::string err;
   auto program_out = OutputFile::Open(a.output, err);
   std::unique_ptr<OutputFile> csv_out;
@@ -53,8 +52,8 @@ int RunPlanPly(const PlanPlyArgs& a) {
     std::string names;
     for (const auto& p : scene->plies) names += (names.empty() ? "" : ", ") + p.name;
     sink.Error("plan-unknown-ply", SourceLocation{a.scene, 1, 1},
-               "scene '" + scene->name + "' has no ply '" + a.ply + "' (plies: " +
-                   (names.empty() ? "none" : names) + ")");
+               "scene '" + scene->name + "' has no ply '" + a.ply +
+                   "' (plies: " + (names.empty() ? "none" : names) + ")");
     PrintDiagnostics(sink);
     return kExitBadInput;
   }
@@ -63,7 +62,8 @@ int RunPlanPly(const PlanPlyArgs& a) {
   if (PrintDiagnostics(sink) || !plan) return kExitBadInput;
   const int rc = WritePlyOutputs(*scene, *plan, a);
   if (rc != kExitOk) return rc;
-  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   int laid_tows = 0;
   for (const auto& c : plan->courses)
     for (const auto& t : c.tows) laid_tows += t.laid.empty() ? 0 : 1;
@@ -90,8 +90,9 @@ int RunPlanPly(const PlanPlyArgs& a) {
 void AddPlanPlyCommand(CLI::App& plan, int& exit_code) {
   auto a = std::make_shared<PlanPlyArgs>();
   CLI::App* cmd = plan.add_subcommand(
-      "ply", "A fibre-placement ply (seed 002): courses offset across the ply, tows cut at its "
-             "boundary");
+      "ply",
+      "A fibre-placement ply (seed 002): courses offset across the ply, tows cut at its "
+      "boundary");
   cmd->add_option("--scene", a->scene, "Scene YAML file (AFP head, `plies:`)")->required();
   cmd->add_option("--ply", a->ply, "Ply name (the scene's `plies:`)")->required();
   cmd->add_option("-o,--output", a->output, "Programme file to write")->required();

@@ -131,10 +131,9 @@ void TowRadii(PlyCourse& course) {
       for (const PlyPoint& p : course.points)
         if (!p.event && p.s_mm > seg.start_mm && p.s_mm < seg.end_mm) pts.push_back(&p);
       for (std::size_t j = 1; j + 1 < pts.size(); ++j) {
-        tow.min_radius_mm =
-            std::min(tow.min_radius_mm, GeodesicRadius(centre(pts[j - 1]), centre(pts[j]),
-                                                       centre(pts[j + 1]),
-                                                       pts[j]->tool.linear().col(2)));
+        tow.min_radius_mm = std::min(
+            tow.min_radius_mm, GeodesicRadius(centre(pts[j - 1]), centre(pts[j]),
+                                              centre(pts[j + 1]), pts[j]->tool.linear().col(2)));
       }
     }
   }
@@ -143,7 +142,7 @@ void TowRadii(PlyCourse& course) {
 }  // namespace
 
 std::optional<PlyCourse> PlanCourse(const CourseContext& ctx, const SurfaceCurve& centre,
-                                    int offset_index) {
+                                    int offset_index, double* off_surface_s) {
   if (centre.size() < 2) return std::nullopt;
   const CourseBuilder b(ctx, centre);
   const double length = b.Line().Length();
@@ -161,7 +160,8 @@ std::optional<PlyCourse> PlanCourse(const CourseContext& ctx, const SurfaceCurve
     for (std::size_t i = 0; i < samples.size(); ++i) {
       const bool now = samples[i].ok && (samples[i].laid & bit) != 0;
       if (now == laid) continue;
-      const double s = i == 0 ? 0.0 : b.Bisect(samples[i - 1].point.s_mm, samples[i].point.s_mm, bit);
+      const double s =
+          i == 0 ? 0.0 : b.Bisect(samples[i - 1].point.s_mm, samples[i].point.s_mm, bit);
       events.push_back({s, t, now});
       laid = now;
     }
@@ -185,8 +185,9 @@ std::optional<PlyCourse> PlanCourse(const CourseContext& ctx, const SurfaceCurve
   for (const Sample& x : samples) {
     const double s = x.point.s_mm;
     if (s <= first || s >= last) continue;
-    const bool near = std::any_of(at.begin(), at.begin() + static_cast<long>(event_points),
-                                  [&](double e) { return std::abs(e - s) < ctx.options.merge_tol_mm; });
+    const bool near =
+        std::any_of(at.begin(), at.begin() + static_cast<long>(event_points),
+                    [&](double e) { return std::abs(e - s) < ctx.options.merge_tol_mm; });
     if (!near) at.push_back(s);
   }
   std::sort(at.begin(), at.end());
@@ -194,7 +195,10 @@ std::optional<PlyCourse> PlanCourse(const CourseContext& ctx, const SurfaceCurve
     Sample x = b.At(s);
     x.point.event = std::binary_search(events.begin(), events.end(), Event{s, 0, true},
                                        [](const Event& p, const Event& q) { return p.s < q.s; });
-    if (!x.ok) return std::nullopt;  // a walk left the surface: no course here
+    if (!x.ok) {  // a tow boundary leaves the surface while the course lays
+      *off_surface_s = s;
+      return std::nullopt;
+    }
     course.points.push_back(std::move(x.point));
   }
   for (int t = 1; t <= k; ++t) {
@@ -227,7 +231,8 @@ CourseSeam MeasureSeam(const PlyCourse& right, const PlyCourse& left) {
     double best = INFINITY;
     Eigen::Vector3d q_best = a;
     for (std::size_t j = 1; j < left.points.size(); ++j) {
-      const Eigen::Vector3d q0 = left.points[j - 1].boundary[k], d = left.points[j].boundary[k] - q0;
+      const Eigen::Vector3d q0 = left.points[j - 1].boundary[k],
+                            d = left.points[j].boundary[k] - q0;
       const double f = std::clamp((a - q0).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
       const Eigen::Vector3d q = q0 + f * d;
       if ((q - a).norm() < best) best = (q - a).norm(), q_best = q;

@@ -16,9 +16,11 @@ struct CourseContext {
   const PlyPlanOptions& options;
 };
 
-/// The course along `centre` (a dense curve on the surface), or nullopt when no tow is laid.
+/// The course along `centre` (a dense curve on the surface), or nullopt when no tow is laid,
+/// or when the tows leave the surface between the first add and the last cut (then
+/// `*off_surface_s` = the course length there).
 std::optional<PlyCourse> PlanCourse(const CourseContext& ctx, const SurfaceCurve& centre,
-                                    int offset_index);
+                                    int offset_index, double* off_surface_s);
 
 /// Gap and overlap between the left edge of `right` and the right edge of `left`.
 CourseSeam MeasureSeam(const PlyCourse& right, const PlyCourse& left);

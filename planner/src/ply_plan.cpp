@@ -65,8 +65,8 @@ std::optional<SurfaceCurve> OffsetOnce(const geom::Surface& surface, const Surfa
   OffsetOptions o;
   o.distance_mm = distance;
   o.count = 1;
-  o.method = method == scene::PlyOffsetMethod::kPaper ? OffsetMethod::kPaper
-                                                      : OffsetMethod::kCorrected;
+  o.method =
+      method == scene::PlyOffsetMethod::kPaper ? OffsetMethod::kPaper : OffsetMethod::kCorrected;
   const SurfaceCurve base = side > 0 ? curve : Reversed(curve);
   OffsetFamily f = OffsetCurves(surface, base, o);
   if (!f.ok || f.curves.size() < 2) return std::nullopt;
@@ -85,6 +85,30 @@ SurfaceCurve Trim(const SurfaceCurve& c, const geom::Domain2& region) {
     while (j < c.size() && region.Contains(c[j].uv)) ++j;
     if (j - i > best_n) best_a = i, best_n = j - i;
     i = j;
+  }
+  return SurfaceCurve(c.begin() + static_cast<long>(best_a),
+                      c.begin() + static_cast<long>(best_a + best_n));
+}
+
+/// The longest run of points of `c` whose offset by `distance` to `side`, predicted from the
+/// surface's Jacobian, stays `margin` inside the domain.
+SurfaceCurve KeepOffsetOnSurface(const geom::Surface& surface, const SurfaceCurve& c,
+                                 double distance, int side, double margin) {
+  geom::Domain2 inner = surface.Domain();
+  inner.min.array() += margin;
+  inner.max.array() -= margin;
+  std::size_t best_a = 0, best_n = 0, run_a = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const CurvePoint& p = c[i];
+    const Eigen::Matrix<double, 3, 2> j = surface.Jacobian(p.uv);
+    const Eigen::Vector3d d = side * distance * p.normal.cross(p.tangent);
+    const Eigen::Vector2d duv = (j.transpose() * j).ldlt().solve(j.transpose() * d);
+    if (!inner.Contains(p.uv + duv)) {
+      run_a = i + 1;
+    } else if (i + 1 - run_a > best_n) {
+      best_a = run_a;
+      best_n = i + 1 - run_a;
+    }
   }
   return SurfaceCurve(c.begin() + static_cast<long>(best_a),
                       c.begin() + static_cast<long>(best_a + best_n));
@@ -151,8 +175,8 @@ std::optional<PlyPlan> PlanPly(const scene::Scene& scene, const scene::PlySpec& 
   const ReferenceCurve ref = ReferenceCourse(surface, ply, region, options);
   if (!ref.ok || ref.points.size() < 2) {
     sink.Error("plan-ply-no-reference", ply.where,
-               "ply '" + ply.name + "': " +
-                   (ref.message.empty() ? "the fibre axis does not project" : ref.message));
+               "ply '" + ply.name +
+                   "': " + (ref.message.empty() ? "the fibre axis does not project" : ref.message));
     return std::nullopt;
   }
   const CourseContext ctx{surface, ply, plan.layout, options};
@@ -161,7 +185,17 @@ std::optional<PlyPlan> PlanPly(const scene::Scene& scene, const scene::PlySpec& 
     for (int index = 0;; ++index) {
       if (index > 0 || side == 0) {
         const int offset_index = side == 0 ? 0 : side * index;
-        std::optional<PlyCourse> course = PlanCourse(ctx, curve, offset_index);
+        double off_surface_s = -1.0;
+        std::optional<PlyCourse> course = PlanCourse(ctx, curve, offset_index, &off_surface_s);
+        if (off_surface_s >= 0.0) {
+          sink.Error("plan-ply-off-surface", ply.where,
+                     "ply '" + ply.name + "': the tows of the course " +
+                         std::to_string(offset_index) +
+                         " course widths from the reference leave the surface " +
+                         std::to_string(off_surface_s) +
+                         " mm along it; keep the ply a course width inside the surface");
+          return std::nullopt;
+        }
         if (!course) break;  // lays nothing: the ply is behind
         plan.courses.push_back(std::move(*course));
         if (static_cast<int>(plan.courses.size()) > options.max_courses) {
@@ -173,17 +207,14 @@ std::optional<PlyPlan> PlanPly(const scene::Scene& scene, const scene::PlySpec& 
         if (side == 0) break;
       }
       auto next = OffsetOnce(surface, curve, width, side, ply.method);
-      if (!next) {
-        // An offset point left the surface: keep the part of the course a course width
-        // inside the domain (the ply lies inside it) and offset that.
-        geom::Domain2 inner = surface.Domain();
-        inner.min.array() += 1.05 * width;
-        inner.max.array() -= 1.05 * width;
-        const SurfaceCurve inside = Trim(curve, inner);
-        if (inside.size() < 2) break;
-        next = OffsetOnce(surface, inside, width, side, ply.method);
-        if (!next) break;
+      // An offset point left the surface: offset only the points whose offset (predicted
+      // to first order) stays on it, with a growing margin.
+      for (int attempt = 1; !next && attempt <= 4; ++attempt) {
+        const SurfaceCurve kept = KeepOffsetOnSurface(surface, curve, width, side, 5.0 * attempt);
+        if (kept.size() < 2) break;
+        next = OffsetOnce(surface, kept, width, side, ply.method);
       }
+      if (!next) break;
       curve = Trim(*next, region);
       if (curve.size() < 2) break;
     }

@@ -96,9 +96,8 @@ class PlyWriter {
     Code(d_.m.head_lower, std::nullopt);
     const auto events = CourseEvents(c);
     std::uint64_t laid = 0;
-    const std::uint64_t all = plan_.layout.tows >= 64
-                                  ? ~std::uint64_t{0}
-                                  : (std::uint64_t{1} << plan_.layout.tows) - 1;
+    const std::uint64_t all =
+        plan_.layout.tows >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << plan_.layout.tows) - 1;
     for (const PlyPoint& p : c.points) {
       Feed(p);
       const auto it = events.find(p.s_mm);
@@ -152,12 +151,12 @@ void WritePlyTowsCsv(const PlyPlan& plan, std::ostream& out) {
         const TowSegment& seg = t.laid[g];
         for (const PlyPoint& p : c.points) {
           if (p.s_mm < seg.start_mm || p.s_mm > seg.end_mm) continue;
-          text += std::to_string(c.number) + ',' + std::to_string(t.tow) + ',' +
-                  std::to_string(g + 1);
+          text +=
+              std::to_string(c.number) + ',' + std::to_string(t.tow) + ',' + std::to_string(g + 1);
           const Eigen::Vector3d& l = p.boundary[i - 1];
           const Eigen::Vector3d& r = p.boundary[i];
-          for (double v : {seg.start_mm, seg.end_mm, p.s_mm, l.x(), l.y(), l.z(), r.x(), r.y(),
-                           r.z()}) {
+          for (double v :
+               {seg.start_mm, seg.end_mm, p.s_mm, l.x(), l.y(), l.z(), r.x(), r.y(), r.z()}) {
             text += ',';
             text += Num(v);
           }

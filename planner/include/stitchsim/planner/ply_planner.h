@@ -21,12 +21,12 @@
 namespace stitchsim::planner {
 
 struct PlyPlanOptions {
-  double point_spacing_mm = 5.0;   ///< longest step between centre points
-  double chord_tol_mm = 0.05;      ///< fibre axis projection (ProjectFiberAxis)
-  double event_tol_mm = 1e-3;      ///< cut / add positions found to this along the course
-  double merge_tol_mm = 0.01;      ///< events this close share one programme point
-  double max_substep_mm = 1.0;     ///< tow walks (process::TowsAt)
-  int max_courses = 2000;          ///< a ply needing more is an error
+  double point_spacing_mm = 5.0;  ///< longest step between centre points
+  double chord_tol_mm = 0.05;     ///< fibre axis projection (ProjectFiberAxis)
+  double event_tol_mm = 1e-3;     ///< cut / add positions found to this along the course
+  double merge_tol_mm = 0.01;     ///< events this close share one programme point
+  double max_substep_mm = 1.0;    ///< tow walks (process::TowsAt)
+  int max_courses = 2000;         ///< a ply needing more is an error
 };
 
 /// One point of a course: the tool pose (z = surface normal towards the head, y = the course
@@ -46,8 +46,8 @@ struct TowSegment {
 };
 
 struct PlyTow {
-  int tow = 1;                    ///< 1-based, 1 leftmost
-  std::vector<TowSegment> laid;   ///< in order along the course
+  int tow = 1;                      ///< 1-based, 1 leftmost
+  std::vector<TowSegment> laid;     ///< in order along the course
   double min_radius_mm = INFINITY;  ///< geodesic radius of its centre line where laid
 };
 
@@ -87,7 +87,7 @@ struct PlyPlan {
   double min_radius_mm = INFINITY;
   double max_gap_mm = 0.0;
   double max_overlap_mm = 0.0;
-  double laid_length_mm = 0.0;  ///< sum of the courses' lay-up lengths
+  double laid_length_mm = 0.0;       ///< sum of the courses' lay-up lengths
   std::vector<PlyFinding> findings;  ///< empty: the cell can lay it as planned
 };
 
