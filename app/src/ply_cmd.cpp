@@ -6,7 +6,6 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "stitchsim/common/files.h"
 #include "stitchsim/planner/ply_planner.h"
 
 namespace stitchsim::app {
@@ -18,29 +17,6 @@ struct PlanPlyArgs {
   std::string output;
   std::string tows_csv;
 };
-
-int WritePlyOutputs(const scene::Scene& scene, const planner::PlyPlan& plan, const PlanPlyArgs& a) {
-  std::string err;
-  auto program_out = OutputFile::Open(a.output, err);
-  std::unique_ptr<OutputFile> csv_out;
-  if (program_out && !a.tows_csv.empty()) csv_out = OutputFile::Open(a.tows_csv, err);
-  if (!program_out || (!a.tows_csv.empty() && !csv_out)) {
-    PrintError("io-write", err);
-    return kExitBadInput;
-  }
-  planner::WritePlyProgram(plan, scene, program::Dialect::Default(), program_out->Stream());
-  if (csv_out) planner::WritePlyTowsCsv(plan, csv_out->Stream());
-  if (!program_out->Stream().flush() || (csv_out && !csv_out->Stream().flush())) {
-    PrintError("io-write", "write failed for " + a.output + (csv_out ? " or " + a.tows_csv : ""));
-    return kExitBadInput;
-  }
-  if (err = program_out->Commit(); err.empty() && csv_out) err = csv_out->Commit();
-  if (!err.empty()) {
-    PrintError("io-write", err);
-    return kExitBadInput;
-  }
-  return kExitOk;
-}
 
 int RunPlanPly(const PlanPlyArgs& a) {
   if (!OutputsDistinct({{"--output", a.output}, {"--tows-csv", a.tows_csv}})) return kExitBadInput;
@@ -60,8 +36,13 @@ int RunPlanPly(const PlanPlyArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   auto plan = planner::PlanPly(*scene, *ply, planner::PlyPlanOptions{}, sink);
   if (PrintDiagnostics(sink) || !plan) return kExitBadInput;
-  const int rc = WritePlyOutputs(*scene, *plan, a);
-  if (rc != kExitOk) return rc;
+  const int written = WriteProgramAndCsv(
+      a.output, a.tows_csv,
+      [&](std::ostream& out) {
+        planner::WritePlyProgram(*plan, *scene, program::Dialect::Default(), out);
+      },
+      [&](std::ostream& out) { planner::WritePlyTowsCsv(*plan, out); });
+  if (written != kExitOk) return written;
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   int laid_tows = 0;

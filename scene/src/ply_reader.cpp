@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <set>
+#include <string_view>
+#include <utility>
 
 #include "stitchsim/geom/polygon2.h"
 
@@ -56,29 +59,33 @@ class PlyReader {
  private:
   void Bad(const YAML::Node& n, std::string message) { r_.Error(n, "bad-ply", std::move(message)); }
 
+  /// The value of `key` among `choices` (name, value), into `out`; else scene-bad-ply.
+  template <typename T>
+  void Choice(const YAML::Node& item, std::string_view key,
+              std::initializer_list<std::pair<std::string_view, T>> choices, T& out) {
+    auto n = r_.Child(item, key, false);
+    if (!n) return;
+    auto s = r_.String(*n, key);
+    if (!s) return;
+    std::string names;
+    for (const auto& [name, value] : choices) {
+      if (*s == name) {
+        out = value;
+        return;
+      }
+      names += (names.empty() ? "" : " or ") + std::string(name);
+    }
+    Bad(*n, "ply " + std::string(key) + " must be " + names + ", got '" + *s + "'");
+  }
+
   void ReadEnums(const YAML::Node& item, PlySpec& ply) {
-    if (auto n = r_.Child(item, "rule", false)) {
-      if (auto s = r_.String(*n, "rule")) {
-        if (*s == "offset") {
-          ply.rule = PlyRule::kOffset;
-        } else if (*s == "laminate_family") {
-          ply.rule = PlyRule::kLaminateFamily;
-        } else {
-          Bad(*n, "ply rule must be offset or laminate_family, got '" + *s + "'");
-        }
-      }
-    }
-    if (auto n = r_.Child(item, "method", false)) {
-      if (auto s = r_.String(*n, "method")) {
-        if (*s == "corrected") {
-          ply.method = PlyOffsetMethod::kCorrected;
-        } else if (*s == "paper") {
-          ply.method = PlyOffsetMethod::kPaper;
-        } else {
-          Bad(*n, "ply method must be corrected or paper, got '" + *s + "'");
-        }
-      }
-    }
+    Choice<PlyRule>(item, "rule",
+                    {{"offset", PlyRule::kOffset}, {"laminate_family", PlyRule::kLaminateFamily}},
+                    ply.rule);
+    Choice<PlyOffsetMethod>(
+        item, "method",
+        {{"corrected", PlyOffsetMethod::kCorrected}, {"paper", PlyOffsetMethod::kPaper}},
+        ply.method);
     if (auto n = r_.Child(item, "coverage", false)) {
       if (auto v = r_.Number(*n, "coverage")) {
         if (*v == 0.0 || *v == 50.0 || *v == 100.0) {
