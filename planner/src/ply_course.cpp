@@ -219,6 +219,12 @@ std::optional<PlyCourse> PlanCourse(const CourseContext& ctx, const SurfaceCurve
   return course;
 }
 
+SurfaceCurve Reversed(SurfaceCurve c) {
+  std::reverse(c.begin(), c.end());
+  for (auto& p : c) p.tangent = -p.tangent;
+  return c;
+}
+
 CourseSeam MeasureSeam(const PlyCourse& right, const PlyCourse& left) {
   CourseSeam seam;
   seam.right = right.number;

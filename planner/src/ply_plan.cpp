@@ -27,11 +27,11 @@ geom::Domain2 Region(const std::vector<Eigen::Vector2d>& boundary, double margin
 /// The fibre axis through the ply origin at the ply angle, as far both ways as it projects
 /// onto the surface inside `region`.
 ReferenceCurve ReferenceCourse(const geom::Surface& surface, const scene::PlySpec& ply,
-                               const geom::Domain2& region, const PlyPlanOptions& options) {
+                               double angle_rad, const geom::Domain2& region,
+                               const PlyPlanOptions& options) {
   const geom::SurfaceProjection foot = surface.Project(ply.origin_mm);
   const Eigen::Vector3d n = foot.normal;
-  const Eigen::Vector3d d =
-      Eigen::AngleAxisd(ply.angle_rad, n) * geom::Tangential(ply.direction, n);
+  const Eigen::Vector3d d = Eigen::AngleAxisd(angle_rad, n) * geom::Tangential(ply.direction, n);
   const geom::Domain2 domain = surface.Domain();
   auto projects = [&](double t) {
     Eigen::Vector3d hit;
@@ -51,12 +51,6 @@ ReferenceCurve ReferenceCourse(const geom::Surface& surface, const scene::PlySpe
   }
   FiberAxis axis{ply.origin_mm + t_min * d, ply.origin_mm + t_max * d, ply.projection};
   return ProjectFiberAxis(surface, axis, options.chord_tol_mm);
-}
-
-SurfaceCurve Reversed(SurfaceCurve c) {
-  std::reverse(c.begin(), c.end());
-  for (auto& p : c) p.tangent = -p.tangent;
-  return c;
 }
 
 /// One offset of `curve` by `distance` to its left (side > 0: N x T) or right.
@@ -144,6 +138,130 @@ void Summarise(PlyPlan& plan, const scene::Scene& scene) {
   }
 }
 
+/// What a ply is planned with, and where its courses go.
+class PlyBuilder {
+ public:
+  PlyBuilder(const scene::Scene& scene, const scene::PlySpec& ply, const PlyPlanOptions& options,
+             DiagnosticSink& sink, PlyPlan& plan)
+      : surface_(*scene.surface),
+        ply_(ply),
+        options_(options),
+        sink_(sink),
+        plan_(plan),
+        width_(plan.layout.tows * plan.layout.width_mm),
+        ctx_{surface_, ply, plan.layout, options} {}
+
+  /// The ply's region in (u, v), grown by `margin`, inside the domain.
+  geom::Domain2 Within(double margin) const {
+    geom::Domain2 r = Region(ply_.boundary_uv, margin);
+    r.min = r.min.cwiseMax(surface_.Domain().min);
+    r.max = r.max.cwiseMin(surface_.Domain().max);
+    return r;
+  }
+
+  std::optional<SurfaceCurve> Reference(double angle_rad, const geom::Domain2& region) {
+    const ReferenceCurve ref = ReferenceCourse(surface_, ply_, angle_rad, region, options_);
+    if (!ref.ok || ref.points.size() < 2) {
+      sink_.Error("plan-ply-no-reference", ply_.where,
+                  "ply '" + ply_.name + "': " +
+                      (ref.message.empty() ? "the fibre axis does not project" : ref.message));
+      return std::nullopt;
+    }
+    return Trim(ref.points, region);
+  }
+
+  /// `curve` offset by `distance` to `side`, trimmed to `region`; where an offset point would
+  /// leave the surface, only the points whose offset (predicted to first order) stays on it
+  /// are offset, with a growing margin. nullopt: nothing left.
+  std::optional<SurfaceCurve> Offset(const SurfaceCurve& curve, double distance, int side,
+                                     const geom::Domain2& region) const {
+    auto next = OffsetOnce(surface_, curve, distance, side, ply_.method);
+    for (int attempt = 1; !next && attempt <= 4; ++attempt) {
+      const SurfaceCurve kept = KeepOffsetOnSurface(surface_, curve, distance, side, 5.0 * attempt);
+      if (kept.size() < 2) break;
+      next = OffsetOnce(surface_, kept, distance, side, ply_.method);
+    }
+    if (!next) return std::nullopt;
+    SurfaceCurve trimmed = Trim(*next, region);
+    if (trimmed.size() < 2) return std::nullopt;
+    return trimmed;
+  }
+
+  enum class Added { kYes, kNothing, kError };
+  Added Course(const SurfaceCurve& curve, int offset_index) {
+    double off_surface_s = -1.0;
+    std::optional<PlyCourse> course = PlanCourse(ctx_, curve, offset_index, &off_surface_s);
+    if (off_surface_s >= 0.0) {
+      sink_.Error("plan-ply-off-surface", ply_.where,
+                  "ply '" + ply_.name + "': the tows of course " + std::to_string(offset_index) +
+                      " (from the reference) leave the surface " + std::to_string(off_surface_s) +
+                      " mm along it; keep the ply a course width inside the surface");
+      return Added::kError;
+    }
+    if (!course) return Added::kNothing;
+    plan_.courses.push_back(std::move(*course));
+    if (static_cast<int>(plan_.courses.size()) > options_.max_courses) {
+      sink_.Error("plan-ply-too-many-courses", ply_.where,
+                  "ply '" + ply_.name + "' needs more than " +
+                      std::to_string(options_.max_courses) + " courses");
+      return Added::kError;
+    }
+    return Added::kYes;
+  }
+
+  /// Band offset ply: the reference at the ply angle, then offsets by the course width both
+  /// ways until a course lays nothing.
+  bool Offsets() {
+    const geom::Domain2 region = Within(0.5 * width_ + 10.0);
+    const auto ref = Reference(ply_.angle_rad, region);
+    if (!ref) return false;
+    if (Course(*ref, 0) == Added::kError) return false;
+    for (int side : {1, -1}) {
+      SurfaceCurve curve = *ref;
+      for (int index = 1;; ++index) {
+        auto next = Offset(curve, width_, side, region);
+        if (!next) break;
+        curve = std::move(*next);
+        const Added a = Course(curve, side * index);
+        if (a == Added::kError) return false;
+        if (a == Added::kNothing) break;  // the ply is behind
+      }
+    }
+    return true;
+  }
+
+  /// Laminate family ply: laminate curves at the ply angle across the tow-width offsets of
+  /// the 0 deg reference, a course width apart across the fibres.
+  bool Laminate() {
+    const double sin_theta = std::abs(std::sin(ply_.angle_rad));
+    if (sin_theta < 1e-6) return Offsets();  // along the 0 deg curves: the band offset ply
+    const Eigen::Vector2d size =
+        Region(ply_.boundary_uv, 0.0).max - Region(ply_.boundary_uv, 0.0).min;
+    const double reach = size.norm() * std::abs(std::cos(ply_.angle_rad)) / sin_theta;
+    const geom::Domain2 region = Within(0.5 * width_ + 10.0 + reach);
+    const auto ref = Reference(0.0, region);
+    if (!ref) return false;
+    const double tow = plan_.layout.width_mm;
+    LaminateInputs in{surface_, *ref, ply_.angle_rad, width_, [&](const SurfaceCurve& c, int side) {
+                        return Offset(c, tow, side, region);
+                      }};
+    const std::vector<SurfaceCurve> lines = LaminateCourseLines(in);
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      if (Course(lines[i], -static_cast<int>(i)) == Added::kError) return false;
+    }
+    return true;
+  }
+
+ private:
+  const geom::Surface& surface_;
+  const scene::PlySpec& ply_;
+  const PlyPlanOptions& options_;
+  DiagnosticSink& sink_;
+  PlyPlan& plan_;
+  double width_;
+  CourseContext ctx_;
+};
+
 }  // namespace
 
 std::optional<PlyPlan> PlanPly(const scene::Scene& scene, const scene::PlySpec& ply,
@@ -153,13 +271,6 @@ std::optional<PlyPlan> PlanPly(const scene::Scene& scene, const scene::PlySpec& 
                "scene '" + scene.name + "' mounts head '" + scene.head.name + "', not an AFP head");
     return std::nullopt;
   }
-  if (ply.rule == scene::PlyRule::kLaminateFamily) {
-    sink.Error("plan-ply-rule-not-implemented", ply.where,
-               "ply '" + ply.name +
-                   "': rule laminate_family is not implemented yet by `plan ply` (use rule: "
-                   "offset)");
-    return std::nullopt;
-  }
   PlyPlan plan;
   plan.ply_name = ply.name;
   plan.angle_rad = ply.angle_rad;
@@ -167,58 +278,10 @@ std::optional<PlyPlan> PlanPly(const scene::Scene& scene, const scene::PlySpec& 
   plan.layout = {ply.tows, scene.head.afp.tow_width_mm};
   for (std::size_t i = 0; i < scene.plies.size(); ++i)
     if (scene.plies[i].name == ply.name) plan.ply_index = static_cast<int>(i) + 1;
-  const geom::Surface& surface = *scene.surface;
-  const double width = plan.layout.tows * plan.layout.width_mm;
-  geom::Domain2 region = Region(ply.boundary_uv, 0.5 * width + 10.0);
-  region.min = region.min.cwiseMax(surface.Domain().min);
-  region.max = region.max.cwiseMin(surface.Domain().max);
-  const ReferenceCurve ref = ReferenceCourse(surface, ply, region, options);
-  if (!ref.ok || ref.points.size() < 2) {
-    sink.Error("plan-ply-no-reference", ply.where,
-               "ply '" + ply.name +
-                   "': " + (ref.message.empty() ? "the fibre axis does not project" : ref.message));
-    return std::nullopt;
-  }
-  const CourseContext ctx{surface, ply, plan.layout, options};
-  for (int side : {0, 1, -1}) {
-    SurfaceCurve curve = Trim(ref.points, region);
-    for (int index = 0;; ++index) {
-      if (index > 0 || side == 0) {
-        const int offset_index = side == 0 ? 0 : side * index;
-        double off_surface_s = -1.0;
-        std::optional<PlyCourse> course = PlanCourse(ctx, curve, offset_index, &off_surface_s);
-        if (off_surface_s >= 0.0) {
-          sink.Error("plan-ply-off-surface", ply.where,
-                     "ply '" + ply.name + "': the tows of the course " +
-                         std::to_string(offset_index) +
-                         " course widths from the reference leave the surface " +
-                         std::to_string(off_surface_s) +
-                         " mm along it; keep the ply a course width inside the surface");
-          return std::nullopt;
-        }
-        if (!course) break;  // lays nothing: the ply is behind
-        plan.courses.push_back(std::move(*course));
-        if (static_cast<int>(plan.courses.size()) > options.max_courses) {
-          sink.Error("plan-ply-too-many-courses", ply.where,
-                     "ply '" + ply.name + "' needs more than " +
-                         std::to_string(options.max_courses) + " courses");
-          return std::nullopt;
-        }
-        if (side == 0) break;
-      }
-      auto next = OffsetOnce(surface, curve, width, side, ply.method);
-      // An offset point left the surface: offset only the points whose offset (predicted
-      // to first order) stays on it, with a growing margin.
-      for (int attempt = 1; !next && attempt <= 4; ++attempt) {
-        const SurfaceCurve kept = KeepOffsetOnSurface(surface, curve, width, side, 5.0 * attempt);
-        if (kept.size() < 2) break;
-        next = OffsetOnce(surface, kept, width, side, ply.method);
-      }
-      if (!next) break;
-      curve = Trim(*next, region);
-      if (curve.size() < 2) break;
-    }
-  }
+  PlyBuilder builder(scene, ply, options, sink, plan);
+  const bool ok =
+      ply.rule == scene::PlyRule::kLaminateFamily ? builder.Laminate() : builder.Offsets();
+  if (!ok) return std::nullopt;
   if (plan.courses.empty()) {
     sink.Error("plan-ply-empty", ply.where, "ply '" + ply.name + "': no course lays a tow");
     return std::nullopt;
