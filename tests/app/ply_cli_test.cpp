@@ -68,6 +68,30 @@ TEST(PlanPly, BadPlyIsExit2AtItsLineAndWritesNothing) {
   EXPECT_FALSE(fs::exists(nc));
 }
 
+// A head whose minimum steering radius the panel's tows go below: a finding of the plan,
+// exit 1, with the programme written (the plan is well-formed).
+TEST(PlanPly, SteeringBelowTheHeadsLimitIsExit1) {
+  const fs::path dir = testing::ScratchDir();
+  std::string head = testing::ReadText(kSource / "models" / "heads" / "afp.yaml");
+  const std::string radius = "min_steering_radius_mm: 635";
+  ASSERT_NE(head.find(radius), std::string::npos);
+  head.replace(head.find(radius), radius.size(), "min_steering_radius_mm: 10000000");
+  const std::string mjcf = "mjcf: afp.xml";
+  ASSERT_NE(head.find(mjcf), std::string::npos);
+  head.replace(head.find(mjcf), mjcf.size(),
+               "mjcf: " + (kSource / "models" / "heads" / "afp.xml").string());
+  std::ofstream(dir / "afp_strict.yaml") << head;
+  std::string scene = testing::ReadText(kPanel);
+  scene.replace(scene.find("head: afp\n"), 10, "head: afp_strict.yaml\n");
+  std::ofstream(dir / "strict_panel.yaml") << scene;
+  const fs::path nc = dir / "strict.nc";
+  const PlyRun r = Cli("plan ply --scene " + (dir / "strict_panel.yaml").string() +
+                       " --ply skin_45 -o " + nc.string());
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("error[ply-steering-radius]"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(nc));
+}
+
 TEST(PlanPly, UnknownPlyIsExit2) {
   const fs::path nc = testing::ScratchDir() / "none.nc";
   const PlyRun r = Cli("plan ply --scene " + kPanel.string() + " --ply skin_90 -o " + nc.string());
