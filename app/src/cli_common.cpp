@@ -48,6 +48,31 @@ std::optional<program::Dialect> DialectOption(const std::string& file) {
   return dialect;
 }
 
+int WriteProgramAndCsv(const std::string& program, const std::string& csv,
+                       const std::function<void(std::ostream&)>& write_program,
+                       const std::function<void(std::ostream&)>& write_csv) {
+  std::string err;
+  auto program_out = OutputFile::Open(program, err);
+  std::unique_ptr<OutputFile> csv_out;
+  if (program_out && !csv.empty()) csv_out = OutputFile::Open(csv, err);
+  if (!program_out || (!csv.empty() && !csv_out)) {
+    PrintError("io-write", err);
+    return kExitBadInput;
+  }
+  write_program(program_out->Stream());
+  if (csv_out) write_csv(csv_out->Stream());
+  if (!program_out->Stream().flush() || (csv_out && !csv_out->Stream().flush())) {
+    PrintError("io-write", "write failed for " + program + (csv_out ? " or " + csv : ""));
+    return kExitBadInput;
+  }
+  if (err = program_out->Commit(); err.empty() && csv_out) err = csv_out->Commit();
+  if (!err.empty()) {
+    PrintError("io-write", err);
+    return kExitBadInput;
+  }
+  return kExitOk;
+}
+
 std::optional<LoadedScene> LoadSceneAndRobot(const std::filesystem::path& scene_file) {
   DiagnosticSink sink;
   LoadedScene out;

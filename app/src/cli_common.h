@@ -3,6 +3,8 @@
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <functional>
+#include <iosfwd>
 #include <memory>
 #include <string>
 #include <utility>
@@ -42,6 +44,13 @@ void PrintError(const std::string& code, const std::string& message);
 /// The dialect of a --dialect option: the built-in one when `file` is empty, else the file;
 /// nullopt (diagnostics printed) when the file is bad.
 std::optional<program::Dialect> DialectOption(const std::string& file);
+
+/// Writes a programme and, when `csv` is not empty, a CSV beside it, through temporaries
+/// renamed as a set only when both were written: both or neither. kExitOk, or kExitBadInput
+/// with io-write printed.
+int WriteProgramAndCsv(const std::string& program, const std::string& csv,
+                       const std::function<void(std::ostream&)>& write_program,
+                       const std::function<void(std::ostream&)>& write_csv);
 
 /// A loaded scene and its robot model.
 struct LoadedScene {

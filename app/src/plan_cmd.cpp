@@ -125,27 +125,13 @@ std::string Deg(double rad) {
 
 /// Writes the programme (and the CSV), prints the summary and the over-travel findings.
 int WriteAfpOutputs(const scene::Scene& scene, const planner::AfpPlan& plan, const PlanAfpArgs& a) {
-  // The programme and the CSV are streamed to temporaries and renamed as a set only when
-  // both were written: both or neither.
-  std::string err;
-  auto program_out = OutputFile::Open(a.output, err);
-  std::unique_ptr<OutputFile> csv_out;
-  if (program_out && !a.csv.empty()) csv_out = OutputFile::Open(a.csv, err);
-  if (!program_out || (!a.csv.empty() && !csv_out)) {
-    PrintError("io-write", err);
-    return kExitBadInput;
-  }
-  planner::WriteAfpProgram(plan, scene, program::Dialect::Default(), program_out->Stream());
-  if (csv_out) planner::WriteAfpCsv(plan, csv_out->Stream());
-  if (!program_out->Stream().flush() || (csv_out && !csv_out->Stream().flush())) {
-    PrintError("io-write", "write failed for " + a.output + (csv_out ? " or " + a.csv : ""));
-    return kExitBadInput;
-  }
-  if (err = program_out->Commit(); err.empty() && csv_out) err = csv_out->Commit();
-  if (!err.empty()) {
-    PrintError("io-write", err);
-    return kExitBadInput;
-  }
+  const int written = WriteProgramAndCsv(
+      a.output, a.csv,
+      [&](std::ostream& out) {
+        planner::WriteAfpProgram(plan, scene, program::Dialect::Default(), out);
+      },
+      [&](std::ostream& out) { planner::WriteAfpCsv(plan, out); });
+  if (written != kExitOk) return written;
   const auto& l = plan.limits;
   std::printf(
       "%s: AFP course '%s' on %s, incline %s deg: %zu points over %.3f mm; "
@@ -409,6 +395,7 @@ void AddPlanCommand(CLI::App& app, int& exit_code) {
   ras_cmd->add_option("--dialect", ras->dialect, "Dialect YAML file (default: built-in)");
   AddScenePathFlag(*ras_cmd);
   ras_cmd->callback([ras, &exit_code] { exit_code = RunPlanRaster(*ras); });
+  AddPlanPlyCommand(*plan, exit_code);
 }
 
 }  // namespace stitchsim::app

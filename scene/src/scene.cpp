@@ -6,6 +6,7 @@
 
 #include "cad_surface_reader.h"
 #include "limit_map.h"
+#include "ply_reader.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/common/limits.h"
 #include "stitchsim/geom/rotation.h"
@@ -33,7 +34,7 @@ class SceneLoader {
     r_.CheckKeys(
         *root,
         {"stitchsim_scene", "name", "description", "units", "head", "cell", "part", "surface",
-         "preform", "mold", "stitch", "constraints", "paths", "limits", "rail", "raster"},
+         "preform", "mold", "stitch", "constraints", "paths", "limits", "rail", "raster", "plies"},
         "scene");
     auto scene = std::make_unique<Scene>();
     scene->file = r_.File();
@@ -91,6 +92,7 @@ class SceneLoader {
     ReadLimits(*root, *scene);
     ReadRail(*root, *scene);
     ReadRaster(*root, *scene);
+    detail::ReadPlies(r_, *root, unit_, *scene);
     if (sink_.ErrorCount() > errors_before) return nullptr;
     return scene;
   }

@@ -211,9 +211,11 @@ TEST(SceneFiles, HeadSpecCountsOutsideTheirRangeAreRefusedNotConverted) {
   struct Case {
     std::string head, from, to;
   };
-  for (const Case& c : {Case{"rs535", "tool_number: 1", "tool_number: 1e300"},
-                        Case{"rs535", "tool_number: 1", "tool_number: 2.5"},
-                        Case{"afp", "tows: 16", "tows: 6e36"}}) {
+  for (const Case& c :
+       {Case{"rs535", "tool_number: 1", "tool_number: 1e300"},
+        Case{"rs535", "tool_number: 1", "tool_number: 2.5"}, Case{"afp", "tows: 16", "tows: 6e36"},
+        // more tows than M62/M63 can address (program::kMaxTows = 64)
+        Case{"afp", "tows: 16", "tows: 65"}}) {
     SCOPED_TRACE(c.to);
     std::string text = ReadFile(ResolveHeadFile(c.head, {})).value();
     const auto at = text.find(c.from);

@@ -1,0 +1,112 @@
+#pragma once
+// The fibre-placement ply planner (`stitchsim plan ply`, docs/afp.md "Plies, courses and
+// tows"): fills a scene ply with courses of the head's tows. The reference course is the
+// ply's fibre axis projected onto the surface; every other course is an offset of its
+// neighbour by the course width (planner/offset_curves.h). Along each course the tows are
+// placed by process::TowsAt (the one tow model the afp.* rules share) and cut and restarted
+// at the ply boundary under the ply's coverage policy, at positions found by bisection. Part
+// frame, mm; pure data like RasterPlan.
+
+#include <Eigen/Geometry>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stitchsim/common/diagnostics.h"
+#include "stitchsim/process/afp_tows.h"
+#include "stitchsim/program/dialect.h"
+#include "stitchsim/scene/scene.h"
+
+namespace stitchsim::planner {
+
+struct PlyPlanOptions {
+  double point_spacing_mm = 5.0;  ///< longest step between centre points
+  double chord_tol_mm = 0.05;     ///< fibre axis projection (ProjectFiberAxis)
+  double event_tol_mm = 1e-3;     ///< cut / add positions found to this along the course
+  double merge_tol_mm = 0.01;     ///< events this close share one programme point
+  double max_substep_mm = 1.0;    ///< tow walks (process::TowsAt)
+  int max_courses = 2000;         ///< a ply needing more is an error
+};
+
+/// One point of a course: the tool pose (z = surface normal towards the head, y = the course
+/// direction, x = y cross z) and the tow boundaries there (process::TowsAt).
+struct PlyPoint {
+  double s_mm = 0.0;  ///< course length from the course's first point
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();
+  Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
+  std::vector<Eigen::Vector3d> boundary;  ///< k + 1 tow boundaries, left to right
+  bool event = false;                     ///< inserted at a cut / add position
+};
+
+/// A tow's material along a course: [start, end] in course length.
+struct TowSegment {
+  double start_mm = 0.0;
+  double end_mm = 0.0;
+};
+
+struct PlyTow {
+  int tow = 1;                      ///< 1-based, 1 leftmost
+  std::vector<TowSegment> laid;     ///< in order along the course
+  double min_radius_mm = INFINITY;  ///< geodesic radius of its centre line where laid
+};
+
+struct PlyCourse {
+  int number = 1;                ///< 1-based, right to left across the ply
+  int offset_index = 0;          ///< 0 = the reference course; > 0 to its left (N x T)
+  std::vector<PlyPoint> points;  ///< centre points from the first add to the last cut
+  std::vector<PlyTow> tows;      ///< every tow of the layout (some may lay nothing)
+  double Start() const { return points.empty() ? 0.0 : points.front().s_mm; }
+  double End() const { return points.empty() ? 0.0 : points.back().s_mm; }
+};
+
+/// Between courses `left` and `right` (numbers; left = right + 1): the largest gap and the
+/// largest overlap between their facing edges, measured across the course inside the ply.
+struct CourseSeam {
+  int right = 1;
+  int left = 2;
+  double max_gap_mm = 0.0;
+  double max_overlap_mm = 0.0;
+};
+
+struct PlyFinding {
+  std::string code;  ///< "ply-steering-radius"
+  std::string message;
+};
+
+struct PlyPlan {
+  std::string ply_name;
+  int ply_index = 1;  ///< 1-based position in the scene's plies (M70 P)
+  double angle_rad = 0.0;
+  double coverage = 0.5;
+  process::TowLayout layout;
+  std::vector<PlyCourse> courses;  ///< only courses that lay material, numbered 1..N
+  std::vector<CourseSeam> seams;
+  int tow_segments = 0;  ///< laid segments over all courses and tows
+  int events = 0;        ///< tow adds + cuts
+  double min_radius_mm = INFINITY;
+  double max_gap_mm = 0.0;
+  double max_overlap_mm = 0.0;
+  double laid_length_mm = 0.0;       ///< sum of the courses' lay-up lengths
+  std::vector<PlyFinding> findings;  ///< empty: the cell can lay it as planned
+};
+
+/// Plans `ply` (one of scene.plies). Diagnostics ("plan-...") for a non-AFP head, a fibre
+/// axis that does not reach the ply, a rule not implemented, too many courses.
+std::optional<PlyPlan> PlanPly(const scene::Scene& scene, const scene::PlySpec& ply,
+                               const PlyPlanOptions& options, DiagnosticSink& sink);
+
+/// Writes the programme (docs/program-format.md, "Fibre placement"): header, mm, the AFP head,
+/// M70 for the ply, per course M71, approach along the normal, M21, G1 lay-up with M62/M63 at
+/// their positions, M63 P0, M20, retract, M72; M30.
+void WritePlyProgram(const PlyPlan& plan, const scene::Scene& scene,
+                     const program::Dialect& dialect, std::ostream& out);
+
+/// Per course, tow and laid segment, one row per course point inside the segment:
+/// course,tow,segment,s_start_mm,s_end_mm,s_mm,left_x,left_y,left_z,right_x,right_y,right_z.
+void WritePlyTowsCsv(const PlyPlan& plan, std::ostream& out);
+
+/// Safe height of the approach and retract above the surface along its normal, mm.
+inline constexpr double kPlyApproachHeightMm = 100.0;
+
+}  // namespace stitchsim::planner

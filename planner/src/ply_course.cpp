@@ -1,0 +1,254 @@
+// One course of a ply: poses along the centre curve, the tows there, and where each tow is
+// cut and restarted at the ply boundary (bisection along the course).
+
+#include "ply_course.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "stitchsim/geom/polygon2.h"
+#include "stitchsim/geom/rotation.h"
+#include "stitchsim/geom/surface_walk.h"
+
+namespace stitchsim::planner {
+namespace {
+
+/// The centre curve as a function of its length (chords of the dense curve).
+class CentreLine {
+ public:
+  CentreLine(const geom::Surface& s, const SurfaceCurve& c) : s_(s), c_(c) {
+    length_.push_back(0.0);
+    for (std::size_t i = 1; i < c.size(); ++i)
+      length_.push_back(length_.back() + (c[i].position - c[i - 1].position).norm());
+  }
+  double Length() const { return length_.back(); }
+
+  /// The point at length s: uv and the tool frame (z normal, y along the course).
+  PlyPoint At(double s) const {
+    s = std::clamp(s, 0.0, Length());
+    const auto it = std::upper_bound(length_.begin(), length_.end(), s);
+    const std::size_t i = std::min<std::size_t>(
+        c_.size() - 2, static_cast<std::size_t>(std::max<long>(0, it - length_.begin() - 1)));
+    const double span = length_[i + 1] - length_[i];
+    const double f = span > 0.0 ? (s - length_[i]) / span : 0.0;
+    PlyPoint p;
+    p.s_mm = s;
+    p.uv = (1.0 - f) * c_[i].uv + f * c_[i + 1].uv;
+    const Eigen::Vector3d n = s_.Normal(p.uv).normalized();
+    const Eigen::Vector3d t = (1.0 - f) * c_[i].tangent + f * c_[i + 1].tangent;
+    p.tool.linear() = geom::FrameFromNormalAndDirection(n, geom::Tangential(t, n))
+                          .value_or(Eigen::Matrix3d::Identity());
+    p.tool.translation() = s_.Point(p.uv);
+    return p;
+  }
+
+ private:
+  const geom::Surface& s_;
+  const SurfaceCurve& c_;
+  std::vector<double> length_;
+};
+
+/// Tow states at one point: bit t-1 set when tow t lays material there.
+struct Sample {
+  PlyPoint point;
+  std::vector<Eigen::Vector2d> boundary_uv;
+  std::uint64_t laid = 0;
+  bool ok = false;
+};
+
+class CourseBuilder {
+ public:
+  CourseBuilder(const CourseContext& ctx, const SurfaceCurve& centre)
+      : ctx_(ctx), line_(ctx.surface, centre) {}
+
+  Sample At(double s) const {
+    Sample x;
+    x.point = line_.At(s);
+    const process::TowCross cross = process::TowsAt(ctx_.surface, x.point.tool, ctx_.layout,
+                                                    &x.point.uv, ctx_.options.max_substep_mm);
+    if (!cross.ok) return x;
+    x.ok = true;
+    x.point.boundary = cross.boundary;
+    x.boundary_uv = cross.boundary_uv;
+    const double p = ctx_.ply.coverage;
+    for (int t = 1; t <= ctx_.layout.tows; ++t) {
+      const double out = geom::FractionOutside(ctx_.ply.boundary_uv,
+                                               cross.boundary_uv[static_cast<std::size_t>(t - 1)],
+                                               cross.boundary_uv[static_cast<std::size_t>(t)]);
+      const bool laid = p <= 0.0 ? out <= 1e-9 : (p >= 1.0 ? out < 1.0 - 1e-9 : out < p);
+      if (laid) x.laid |= std::uint64_t{1} << (t - 1);
+    }
+    return x;
+  }
+
+  /// Where tow bit `bit` changes between a (state as at a) and b, to event_tol.
+  double Bisect(double a, double b, std::uint64_t bit) const {
+    const bool at_a = (At(a).laid & bit) != 0;
+    while (b - a > ctx_.options.event_tol_mm) {
+      const double m = 0.5 * (a + b);
+      const Sample x = At(m);
+      if (x.ok && ((x.laid & bit) != 0) == at_a) {
+        a = m;
+      } else {
+        b = m;
+      }
+    }
+    return 0.5 * (a + b);
+  }
+
+  const CentreLine& Line() const { return line_; }
+
+ private:
+  const CourseContext& ctx_;
+  CentreLine line_;
+};
+
+struct Event {
+  double s = 0.0;
+  int tow = 1;
+  bool add = true;
+};
+
+/// Geodesic radius at b of the curve a, b, c (projected into the plane normal to n).
+double GeodesicRadius(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                      const Eigen::Vector3d& n) {
+  Eigen::Vector3d u = b - a, v = c - b;
+  u -= u.dot(n) * n;
+  v -= v.dot(n) * n;
+  const double k2 = 2.0 * std::abs(u.cross(v).dot(n));
+  const double den = u.norm() * v.norm() * (u + v).norm();
+  if (k2 <= 1e-15 * den || den <= 0.0) return INFINITY;
+  return den / k2;
+}
+
+void TowRadii(PlyCourse& course) {
+  for (PlyTow& tow : course.tows) {
+    const std::size_t i = static_cast<std::size_t>(tow.tow);
+    std::vector<const PlyPoint*> pts;
+    auto centre = [&](const PlyPoint* p) { return 0.5 * (p->boundary[i - 1] + p->boundary[i]); };
+    for (const TowSegment& seg : tow.laid) {
+      pts.clear();
+      for (const PlyPoint& p : course.points)
+        if (!p.event && p.s_mm > seg.start_mm && p.s_mm < seg.end_mm) pts.push_back(&p);
+      for (std::size_t j = 1; j + 1 < pts.size(); ++j) {
+        tow.min_radius_mm = std::min(
+            tow.min_radius_mm, GeodesicRadius(centre(pts[j - 1]), centre(pts[j]),
+                                              centre(pts[j + 1]), pts[j]->tool.linear().col(2)));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+std::optional<PlyCourse> PlanCourse(const CourseContext& ctx, const SurfaceCurve& centre,
+                                    int offset_index, double* off_surface_s) {
+  if (centre.size() < 2) return std::nullopt;
+  const CourseBuilder b(ctx, centre);
+  const double length = b.Line().Length();
+  const double spacing = ctx.options.point_spacing_mm;
+  const int segments = std::max(1, static_cast<int>(std::ceil(length / spacing - 1e-9)));
+  std::vector<Sample> samples;
+  samples.reserve(static_cast<std::size_t>(segments) + 1);
+  for (int i = 0; i <= segments; ++i) samples.push_back(b.At(length * i / segments));
+  // Events: state changes between samples (a failed sample lays nothing).
+  std::vector<Event> events;
+  const int k = ctx.layout.tows;
+  for (int t = 1; t <= k; ++t) {
+    const std::uint64_t bit = std::uint64_t{1} << (t - 1);
+    bool laid = false;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const bool now = samples[i].ok && (samples[i].laid & bit) != 0;
+      if (now == laid) continue;
+      const double s =
+          i == 0 ? 0.0 : b.Bisect(samples[i - 1].point.s_mm, samples[i].point.s_mm, bit);
+      events.push_back({s, t, now});
+      laid = now;
+    }
+    if (laid) events.push_back({length, t, false});
+  }
+  if (events.empty()) return std::nullopt;
+  std::sort(events.begin(), events.end(), [](const Event& x, const Event& y) {
+    return x.s < y.s || (x.s == y.s && x.tow < y.tow);
+  });
+  // Merge events closer than merge_tol: they share the first one's position.
+  for (std::size_t i = 1; i < events.size(); ++i) {
+    if (events[i].s - events[i - 1].s < ctx.options.merge_tol_mm) events[i].s = events[i - 1].s;
+  }
+  PlyCourse course;
+  course.offset_index = offset_index;
+  const double first = events.front().s, last = events.back().s;
+  std::vector<double> at;
+  for (const Event& e : events)
+    if (at.empty() || e.s != at.back()) at.push_back(e.s);
+  const std::size_t event_points = at.size();
+  for (const Sample& x : samples) {
+    const double s = x.point.s_mm;
+    if (s <= first || s >= last) continue;
+    const bool near =
+        std::any_of(at.begin(), at.begin() + static_cast<long>(event_points),
+                    [&](double e) { return std::abs(e - s) < ctx.options.merge_tol_mm; });
+    if (!near) at.push_back(s);
+  }
+  std::sort(at.begin(), at.end());
+  for (double s : at) {
+    Sample x = b.At(s);
+    x.point.event = std::binary_search(events.begin(), events.end(), Event{s, 0, true},
+                                       [](const Event& p, const Event& q) { return p.s < q.s; });
+    if (!x.ok) {  // a tow boundary leaves the surface while the course lays
+      *off_surface_s = s;
+      return std::nullopt;
+    }
+    course.points.push_back(std::move(x.point));
+  }
+  for (int t = 1; t <= k; ++t) {
+    PlyTow tow;
+    tow.tow = t;
+    for (const Event& e : events) {
+      if (e.tow != t) continue;
+      if (e.add) {
+        tow.laid.push_back({e.s, e.s});
+      } else if (!tow.laid.empty()) {
+        tow.laid.back().end_mm = e.s;
+      }
+    }
+    std::erase_if(tow.laid, [](const TowSegment& g) { return g.end_mm <= g.start_mm; });
+    course.tows.push_back(std::move(tow));
+  }
+  TowRadii(course);
+  return course;
+}
+
+SurfaceCurve Reversed(SurfaceCurve c) {
+  std::reverse(c.begin(), c.end());
+  for (auto& p : c) p.tangent = -p.tangent;
+  return c;
+}
+
+CourseSeam MeasureSeam(const PlyCourse& right, const PlyCourse& left) {
+  CourseSeam seam;
+  seam.right = right.number;
+  seam.left = left.number;
+  if (left.points.size() < 2) return seam;
+  const std::size_t k = right.points.front().boundary.size() - 1;
+  for (const PlyPoint& p : right.points) {
+    const Eigen::Vector3d e = -p.tool.linear().col(0);  // towards the left course
+    const Eigen::Vector3d a = p.boundary.front();
+    double best = INFINITY;
+    Eigen::Vector3d q_best = a;
+    for (std::size_t j = 1; j < left.points.size(); ++j) {
+      const Eigen::Vector3d q0 = left.points[j - 1].boundary[k],
+                            d = left.points[j].boundary[k] - q0;
+      const double f = std::clamp((a - q0).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+      const Eigen::Vector3d q = q0 + f * d;
+      if ((q - a).norm() < best) best = (q - a).norm(), q_best = q;
+    }
+    const double across = (q_best - a).dot(e);
+    if (((q_best - a) - across * e).norm() > 1.0) continue;  // not beside this point
+    if (across > 0) seam.max_gap_mm = std::max(seam.max_gap_mm, across);
+    if (across < 0) seam.max_overlap_mm = std::max(seam.max_overlap_mm, -across);
+  }
+  return seam;
+}
+
+}  // namespace stitchsim::planner

@@ -1,0 +1,171 @@
+// The programme and the tow CSV of a planned ply (docs/program-format.md, "Fibre placement";
+// docs/afp.md, "Plies, courses and tows").
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <ostream>
+
+#include "detail/program_text.h"
+#include "stitchsim/planner/ply_planner.h"
+#include "stitchsim/program/block.h"
+#include "stitchsim/program/writer.h"
+
+namespace stitchsim::planner {
+namespace {
+
+std::string Num(double v, const char* format = "%.6f") {
+  if (std::abs(v) < 5e-7) v = 0.0;
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), format, v);
+  return buf;
+}
+
+/// Tow adds and cuts per course position (the events of every tow, by s).
+struct TowCodes {
+  std::vector<int> add, cut;
+};
+std::map<double, TowCodes> CourseEvents(const PlyCourse& c) {
+  std::map<double, TowCodes> m;
+  for (const PlyTow& t : c.tows) {
+    for (const TowSegment& g : t.laid) {
+      m[g.start_mm].add.push_back(t.tow);
+      m[g.end_mm].cut.push_back(t.tow);
+    }
+  }
+  return m;
+}
+
+class PlyWriter {
+ public:
+  PlyWriter(const PlyPlan& plan, const scene::Scene& scene, const program::Dialect& d,
+            std::ostream& out)
+      : plan_(plan), scene_(scene), d_(d), w_(out, d), pose_(d) {}
+
+  void Write() {
+    program::ProgramHeader header;
+    header.entries = {{"scene", scene_.name},
+                      {"head", scene_.head.name},
+                      {"ply", plan_.ply_name},
+                      {"angle_deg", Num(plan_.angle_rad * 180.0 / 3.14159265358979323846)},
+                      {"coverage_pct", Num(plan_.coverage * 100.0, "%.0f")},
+                      {"courses", std::to_string(plan_.courses.size())},
+                      {"tows", std::to_string(plan_.layout.tows)}};
+    detail::WriteOpening(w_, b_, d_, header, scene_.head.tool_number);
+    b_.m_codes = {d_.m.ply_start};
+    b_.param = plan_.ply_index;
+    b_.comment = "PLY name=" + plan_.ply_name +
+                 " angle=" + Num(plan_.angle_rad * 180.0 / 3.14159265358979323846, "%g");
+    w_.Write(b_);
+    for (const PlyCourse& c : plan_.courses) WriteCourse(c);
+    detail::WriteEnding(w_, b_, d_);
+  }
+
+ private:
+  void Rapid(const PlyPoint& p, int m_code, const char* comment) {
+    b_.Clear();
+    b_.motion = program::Motion::kRapid;
+    pose_.Set(b_, p.tool.translation() + kPlyApproachHeightMm * p.tool.linear().col(2),
+              p.tool.linear());
+    if (m_code >= 0) b_.m_codes = {m_code};
+    b_.comment = comment;
+    w_.Write(b_);
+  }
+  void Code(int m_code, std::optional<int> param, std::string comment = {}) {
+    b_.Clear();
+    b_.m_codes = {m_code};
+    b_.param = param;
+    b_.comment = std::move(comment);
+    w_.Write(b_);
+  }
+  void Feed(const PlyPoint& p) {
+    b_.Clear();
+    b_.motion = program::Motion::kFeed;
+    pose_.Set(b_, p.tool);
+    const double feed = scene_.head.afp.layup_speed_mm_s * 60.0;
+    if (feed != feed_) b_.feed = feed_ = feed;
+    w_.Write(b_);
+  }
+
+  void WriteCourse(const PlyCourse& c) {
+    const int n = static_cast<int>(plan_.courses.size());
+    Code(d_.m.course_start, c.number,
+         "COURSE " + std::to_string(c.number) + " of " + std::to_string(n));
+    Rapid(c.points.front(), d_.m.head_retract, "approach");
+    Code(d_.m.head_lower, std::nullopt);
+    const auto events = CourseEvents(c);
+    std::uint64_t laid = 0;
+    const std::uint64_t all =
+        plan_.layout.tows >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << plan_.layout.tows) - 1;
+    for (const PlyPoint& p : c.points) {
+      Feed(p);
+      const auto it = events.find(p.s_mm);
+      if (it == events.end()) continue;
+      std::uint64_t cut = 0, add = 0;
+      for (int t : it->second.cut) cut |= std::uint64_t{1} << (t - 1);
+      for (int t : it->second.add) add |= std::uint64_t{1} << (t - 1);
+      if (cut != 0 && (laid & ~cut) == 0 && add == 0 && &p == &c.points.back()) {
+        Code(d_.m.tow_cut, 0);
+      } else {
+        for (int t : it->second.cut) Code(d_.m.tow_cut, t);
+      }
+      laid &= ~cut;
+      if (laid == 0 && add == all && plan_.layout.tows == scene_.head.afp.tows) {
+        Code(d_.m.tow_add, 0);
+      } else {
+        for (int t : it->second.add) Code(d_.m.tow_add, t);
+      }
+      laid |= add;
+    }
+    if (laid != 0) Code(d_.m.tow_cut, 0);
+    Code(d_.m.head_retract, std::nullopt);
+    Rapid(c.points.back(), -1, "leave");
+    Code(d_.m.course_end, std::nullopt);
+  }
+
+  const PlyPlan& plan_;
+  const scene::Scene& scene_;
+  const program::Dialect& d_;
+  program::ProgramWriter w_;
+  detail::PoseWords pose_;
+  program::Block b_;
+  double feed_ = 0.0;
+};
+
+}  // namespace
+
+void WritePlyProgram(const PlyPlan& plan, const scene::Scene& scene,
+                     const program::Dialect& dialect, std::ostream& out) {
+  PlyWriter(plan, scene, dialect, out).Write();
+}
+
+void WritePlyTowsCsv(const PlyPlan& plan, std::ostream& out) {
+  std::string text =
+      "course,tow,segment,s_start_mm,s_end_mm,s_mm,left_x,left_y,left_z,right_x,right_y,"
+      "right_z\n";
+  for (const PlyCourse& c : plan.courses) {
+    for (const PlyTow& t : c.tows) {
+      const std::size_t i = static_cast<std::size_t>(t.tow);
+      for (std::size_t g = 0; g < t.laid.size(); ++g) {
+        const TowSegment& seg = t.laid[g];
+        for (const PlyPoint& p : c.points) {
+          if (p.s_mm < seg.start_mm || p.s_mm > seg.end_mm) continue;
+          text +=
+              std::to_string(c.number) + ',' + std::to_string(t.tow) + ',' + std::to_string(g + 1);
+          const Eigen::Vector3d& l = p.boundary[i - 1];
+          const Eigen::Vector3d& r = p.boundary[i];
+          for (double v :
+               {seg.start_mm, seg.end_mm, p.s_mm, l.x(), l.y(), l.z(), r.x(), r.y(), r.z()}) {
+            text += ',';
+            text += Num(v);
+          }
+          text += '\n';
+        }
+      }
+    }
+  }
+  out << text;
+}
+
+}  // namespace stitchsim::planner

@@ -1,0 +1,16 @@
+#pragma once
+// Reads a scene's `plies:` list (docs/scene-format.md) into scene::PlySpec, after the surface
+// and the head are read. Every problem with a ply is `scene-bad-ply` at its file:line.
+
+#include <yaml-cpp/yaml.h>
+
+#include "stitchsim/common/units.h"
+#include "stitchsim/scene/scene.h"
+#include "stitchsim/scene/yaml_reader.h"
+
+namespace stitchsim::scene::detail {
+
+/// Appends the plies of `root["plies"]` (optional) to scene.plies; errors go to the reader.
+void ReadPlies(YamlReader& r, const YAML::Node& root, LengthUnit unit, Scene& scene);
+
+}  // namespace stitchsim::scene::detail

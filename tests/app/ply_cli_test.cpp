@@ -1,0 +1,105 @@
+// `stitchsim plan ply` (issue 12, S8): the bundled panel's plies planned and verified clean;
+// a bad ply is exit 2 at its file:line with no output; an unknown ply name is exit 2.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "app_test_support.h"
+
+namespace stitchsim::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kSource = STITCHSIM_SOURCE_DIR;
+const fs::path kBinary = fs::path(STITCHSIM_BINARY_DIR) / "app" / "stitchsim";
+const fs::path kPanel = kSource / "scenes" / "afp_panel.yaml";
+
+struct PlyRun {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+PlyRun Cli(const std::string& args) {
+  const fs::path dir = testing::ScratchDir();
+  const fs::path out = dir / "ply_out.txt", err = dir / "ply_err.txt";
+  const std::string cmd =
+      kBinary.string() + " " + args + " >" + out.string() + " 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, testing::ReadText(out),
+          testing::ReadText(err)};
+}
+
+TEST(PlanPly, BundledPanelPliesPlanAndVerifyClean) {
+  for (const std::string ply : {"skin_0", "skin_45"}) {
+    const fs::path nc = testing::ScratchDir() / (ply + ".nc");
+    const fs::path csv = testing::ScratchDir() / (ply + ".csv");
+    const PlyRun plan = Cli("plan ply --scene " + kPanel.string() + " --ply " + ply + " -o " +
+                            nc.string() + " --tows-csv " + csv.string());
+    ASSERT_EQ(plan.exit_code, 0) << plan.out << plan.err;
+    EXPECT_NE(plan.out.find("courses"), std::string::npos) << plan.out;
+    EXPECT_NE(plan.out.find("min steering radius"), std::string::npos) << plan.out;
+    EXPECT_TRUE(fs::exists(csv));
+    const PlyRun verify = Cli("verify --scene " + kPanel.string() + " " + nc.string());
+    EXPECT_EQ(verify.exit_code, 0) << verify.out << verify.err;
+  }
+}
+
+TEST(PlanPly, BadPlyIsExit2AtItsLineAndWritesNothing) {
+  const std::string text = testing::ReadText(kPanel);
+  const std::string key = "    coverage: 50";
+  const std::size_t at = text.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const int line =
+      static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n')) + 1;
+  const fs::path scene = testing::ScratchDir() / "bad_ply.yaml";
+  std::ofstream(scene) << text.substr(0, at) << "    coverage: 30" << text.substr(at + key.size());
+  const fs::path nc = testing::ScratchDir() / "bad_ply.nc";
+  const PlyRun r = Cli("plan ply --scene " + scene.string() + " --ply skin_0 -o " + nc.string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(scene.string() + ":" + std::to_string(line) + ":"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("error[scene-bad-ply]"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(nc));
+}
+
+// A head whose minimum steering radius the panel's tows go below: a finding of the plan,
+// exit 1, with the programme written (the plan is well-formed).
+TEST(PlanPly, SteeringBelowTheHeadsLimitIsExit1) {
+  const fs::path dir = testing::ScratchDir();
+  std::string head = testing::ReadText(kSource / "models" / "heads" / "afp.yaml");
+  const std::string radius = "min_steering_radius_mm: 635";
+  ASSERT_NE(head.find(radius), std::string::npos);
+  head.replace(head.find(radius), radius.size(), "min_steering_radius_mm: 10000000");
+  const std::string mjcf = "mjcf: afp.xml";
+  ASSERT_NE(head.find(mjcf), std::string::npos);
+  head.replace(head.find(mjcf), mjcf.size(),
+               "mjcf: " + (kSource / "models" / "heads" / "afp.xml").string());
+  std::ofstream(dir / "afp_strict.yaml") << head;
+  std::string scene = testing::ReadText(kPanel);
+  scene.replace(scene.find("head: afp\n"), 10, "head: afp_strict.yaml\n");
+  std::ofstream(dir / "strict_panel.yaml") << scene;
+  const fs::path nc = dir / "strict.nc";
+  const PlyRun r = Cli("plan ply --scene " + (dir / "strict_panel.yaml").string() +
+                       " --ply skin_45 -o " + nc.string());
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("error[ply-steering-radius]"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(nc));
+}
+
+TEST(PlanPly, UnknownPlyIsExit2) {
+  const fs::path nc = testing::ScratchDir() / "none.nc";
+  const PlyRun r = Cli("plan ply --scene " + kPanel.string() + " --ply skin_90 -o " + nc.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("plan-unknown-ply"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("skin_0, skin_45"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(nc));
+}
+
+}  // namespace
+}  // namespace stitchsim::app
