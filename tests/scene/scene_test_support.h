@@ -31,11 +31,12 @@ inline void Write(const std::filesystem::path& p, const std::string& text) {
   std::ofstream(p, std::ios::binary) << text;
 }
 
-/// Writes `text` as <tmp>/stitchsim_<suite>/<name> and returns its path.
+/// Writes `text` as <tmp>/stitchsim_<suite>_<pid>/<name> and returns its path.
 inline std::filesystem::path WriteTemp(const std::string& suite, const std::string& name,
                                        const std::string& text) {
   const std::filesystem::path p =
-      std::filesystem::temp_directory_path() / ("stitchsim_" + suite) / name;
+      std::filesystem::temp_directory_path() /
+      ("stitchsim_" + suite + "_" + std::to_string(::getpid())) / name;  // tests run in parallel
   Write(p, text);
   return p;
 }
