@@ -24,6 +24,13 @@ geom::Domain2 Region(const std::vector<Eigen::Vector2d>& boundary, double margin
   return r;
 }
 
+constexpr double kExtensionStepMm = 5.0;
+
+/// The geodesic through the origin's foot point along `d`, both ways until it leaves `region`
+/// (steps of kExtensionStepMm, the walk of geom::WalkOnSurface).
+ReferenceCurve GeodesicReference(const geom::Surface& surface, const geom::SurfaceProjection& foot,
+                                 const Eigen::Vector3d& d, const geom::Domain2& region);
+
 /// The fibre axis through the ply origin at the ply angle, as far both ways as it projects
 /// onto the surface inside `region`.
 ReferenceCurve ReferenceCourse(const geom::Surface& surface, const scene::PlySpec& ply,
@@ -49,6 +56,7 @@ ReferenceCurve ReferenceCourse(const geom::Surface& surface, const scene::PlySpe
     r.message = "the fibre axis of ply '" + ply.name + "' does not cross the ply on the surface";
     return r;
   }
+  if (ply.geodesic_reference) return GeodesicReference(surface, foot, d, region);
   FiberAxis axis{ply.origin_mm + t_min * d, ply.origin_mm + t_max * d, ply.projection};
   return ProjectFiberAxis(surface, axis, options.chord_tol_mm);
 }
@@ -67,6 +75,43 @@ std::optional<SurfaceCurve> OffsetOnce(const geom::Surface& surface, const Surfa
   return side > 0 ? f.curves[1] : Reversed(f.curves[1]);
 }
 
+/// `c` continued at both ends along the surface geodesic of its end direction by `length`, in
+/// steps of at most `step` (fewer where the surface's domain ends). A course is offset from its
+/// neighbour so extended and then trimmed again: an offset's ends (one-sided tangents, and at a
+/// fibre angle, the shift of the whole curve along itself) fall outside the ply, and every
+/// course reaches across the ply however many offsets lie between it and the reference.
+SurfaceCurve Extended(const geom::Surface& surface, const SurfaceCurve& c, double length,
+                      double step) {
+  if (c.size() < 2) return c;
+  auto grow = [&](const CurvePoint& end, const CurvePoint& inner, std::vector<CurvePoint>& out) {
+    CurvePoint at = end;
+    Eigen::Vector3d dir = end.position - inner.position;
+    if (dir.norm() <= 0) return;
+    for (double done = 0; done < length - 1e-9;) {
+      const double h = std::min(step, length - done);
+      const geom::SurfaceFoot f = geom::WalkOnSurface(surface, at.uv, dir, h);
+      if (!f.converged || !surface.Domain().Contains(f.uv)) return;
+      CurvePoint p;
+      p.uv = f.uv;
+      p.position = f.point;
+      p.normal = surface.Normal(f.uv);
+      dir = f.point - at.position;
+      p.tangent = geom::Tangential(dir, p.normal);
+      out.push_back(p);
+      at = p;
+      done += h;
+    }
+  };
+  std::vector<CurvePoint> head, tail;
+  grow(c.front(), c[1], head);
+  grow(c.back(), c[c.size() - 2], tail);
+  for (CurvePoint& p : head) p.tangent = -p.tangent;  // the curve runs the other way
+  SurfaceCurve out(head.rbegin(), head.rend());
+  out.insert(out.end(), c.begin(), c.end());
+  out.insert(out.end(), tail.begin(), tail.end());
+  return out;
+}
+
 /// The run of points inside `region` (the longest contiguous one).
 SurfaceCurve Trim(const SurfaceCurve& c, const geom::Domain2& region) {
   std::size_t best_a = 0, best_n = 0;
@@ -82,6 +127,29 @@ SurfaceCurve Trim(const SurfaceCurve& c, const geom::Domain2& region) {
   }
   return SurfaceCurve(c.begin() + static_cast<long>(best_a),
                       c.begin() + static_cast<long>(best_a + best_n));
+}
+
+ReferenceCurve GeodesicReference(const geom::Surface& surface, const geom::SurfaceProjection& foot,
+                                 const Eigen::Vector3d& d, const geom::Domain2& region) {
+  ReferenceCurve out;
+  CurvePoint start;
+  start.uv = foot.uv;
+  start.position = surface.Point(foot.uv);
+  start.normal = surface.Normal(foot.uv);
+  start.tangent = geom::Tangential(d, start.normal);
+  CurvePoint behind = start;  // a point just behind, so that Extended walks along d
+  behind.position = start.position - 1e-3 * start.tangent;
+  const double reach = (region.max - region.min).norm();
+  SurfaceCurve both = Extended(surface, {behind, start}, reach, kExtensionStepMm);
+  // Extended walked forward from `start` and back from `behind`: drop `behind`.
+  SurfaceCurve line;
+  for (const CurvePoint& p : both) {
+    if ((p.position - behind.position).norm() > 0) line.push_back(p);
+  }
+  out.points = Trim(line, region);
+  out.ok = out.points.size() >= 2;
+  if (!out.ok) out.message = "the geodesic from the ply origin does not cross the ply";
+  return out;
 }
 
 /// The longest run of points of `c` whose offset by `distance` to `side`, predicted from the
@@ -175,9 +243,10 @@ class PlyBuilder {
   /// are offset, with a growing margin. nullopt: nothing left.
   std::optional<SurfaceCurve> Offset(const SurfaceCurve& curve, double distance, int side,
                                      const geom::Domain2& region) const {
-    auto next = OffsetOnce(surface_, curve, distance, side, ply_.method);
+    const SurfaceCurve base = Extended(surface_, curve, 2.0 * distance, kExtensionStepMm);
+    auto next = OffsetOnce(surface_, base, distance, side, ply_.method);
     for (int attempt = 1; !next && attempt <= 4; ++attempt) {
-      const SurfaceCurve kept = KeepOffsetOnSurface(surface_, curve, distance, side, 5.0 * attempt);
+      const SurfaceCurve kept = KeepOffsetOnSurface(surface_, base, distance, side, 5.0 * attempt);
       if (kept.size() < 2) break;
       next = OffsetOnce(surface_, kept, distance, side, ply_.method);
     }

@@ -19,6 +19,7 @@ std::uint64_t AllTows(const TowLayout& layout) {
 TowCross TowsAt(const geom::Surface& surface, const Eigen::Isometry3d& tool_part,
                 const TowLayout& layout, const Eigen::Vector2d* uv_hint, double max_substep_mm) {
   TowCross out;
+  if (!(max_substep_mm > 0)) max_substep_mm = 0.5 * layout.width_mm;
   const Eigen::Vector3d p = tool_part.translation();
   geom::SurfaceFoot foot;
   if (uv_hint != nullptr) foot = geom::ProjectNear(surface, p, *uv_hint);

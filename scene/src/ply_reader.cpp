@@ -127,7 +127,8 @@ class PlyReader {
   bool ReadReference(const YAML::Node& item, PlySpec& ply) {
     auto ref = r_.Child(item, "reference", true);
     if (!ref || !r_.ExpectMap(*ref, "reference")) return false;
-    r_.CheckKeys(*ref, {"origin", "direction", "projection"}, "ply reference");
+    r_.CheckKeys(*ref, {"origin", "direction", "projection", "path"}, "ply reference");
+    Choice<bool>(*ref, "path", {{"projected", false}, {"geodesic", true}}, ply.geodesic_reference);
     auto origin = Vec3(*ref, "origin", true);
     auto direction = Vec3(*ref, "direction", false);
     if (!origin || !direction || scene_.surface == nullptr) return false;

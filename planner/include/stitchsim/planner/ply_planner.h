@@ -25,7 +25,7 @@ struct PlyPlanOptions {
   double chord_tol_mm = 0.05;     ///< fibre axis projection (ProjectFiberAxis)
   double event_tol_mm = 1e-3;     ///< cut / add positions found to this along the course
   double merge_tol_mm = 0.01;     ///< events this close share one programme point
-  double max_substep_mm = 1.0;    ///< tow walks (process::TowsAt)
+  double max_substep_mm = 0.0;    ///< tow walks (process::TowsAt; 0: its default)
   int max_courses = 2000;         ///< a ply needing more is an error
 };
 

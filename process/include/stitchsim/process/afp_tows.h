@@ -43,9 +43,11 @@ struct TowCross {
 
 /// The tow boundaries at `tool_part` (tool pose, part frame, mm). `uv_hint`: a parameter near
 /// the tool point's foot (the previous pose's), or nullptr for a global projection.
-/// `max_substep_mm` bounds the walk's steps (geom::WalkOnSurface).
+/// `max_substep_mm` bounds the walk's steps (geom::WalkOnSurface); 0: half a tow width (the
+/// walk's arc is exact on a circle: on the seed's wing a 1 mm step moves no boundary by more
+/// than 3e-5 mm, and planner and verifier both use the default).
 TowCross TowsAt(const geom::Surface& surface, const Eigen::Isometry3d& tool_part,
                 const TowLayout& layout, const Eigen::Vector2d* uv_hint,
-                double max_substep_mm = 1.0);
+                double max_substep_mm = 0.0);
 
 }  // namespace stitchsim::process

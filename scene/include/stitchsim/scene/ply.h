@@ -40,6 +40,10 @@ struct PlySpec {
   Eigen::Vector3d origin_mm = Eigen::Vector3d::Zero();
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
   Eigen::Vector3d projection = -Eigen::Vector3d::UnitZ();
+  /// The reference course: the fibre axis projected along `projection` (seed 002, false), or
+  /// the surface geodesic from the origin's foot point along the turned direction (true: no
+  /// steering in the reference, so its offsets steer least; `reference: path: geodesic`).
+  bool geodesic_reference = false;
   /// The ply boundary, a closed polygon in the surface's (u, v) (mm; the scene may give it in
   /// 3D, projected onto the surface along `projection`, or in (u, v)). Counter-clockwise.
   std::vector<Eigen::Vector2d> boundary_uv;
