@@ -74,6 +74,9 @@ constexpr LimitSpec kTable[] = {
      "AFP head C axis travel, lower end"},
     {K::kAfpCMaxDeg, "kin.afp_axes", "c_max_deg", U::kDeg, 180.0, true,
      "AFP head C axis travel, upper end"},
+    {K::kAfpSteeringMinMm, "afp.steering_radius", "min_mm", U::kMm, kNone, false,
+     "smallest steering radius of a laid tow's centre line (absent: the head's "
+     "`afp.min_steering_radius_mm`)"},
 };
 static_assert(std::size(kTable) == kLimitKeyCount, "one row per LimitKey");
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "afp_laid.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/verify/rule.h"
 
@@ -494,6 +495,9 @@ std::unique_ptr<Rule> MakeCollisionClearanceRule(const RuleContext& ctx);
 std::unique_ptr<Rule> MakeConstraintCrossingRule(const RuleContext& ctx);  // constraint_rules.cpp
 std::unique_ptr<Rule> MakeStitchCountRule(const RuleContext& ctx);         // program_rules.cpp
 std::unique_ptr<Rule> MakeLineSamplingRule();                              // sampling_rule.cpp
+// afp_*.cpp: the fibre-placement rules over what the programme lays (one sampler shared).
+using LaidTowsPtr = std::shared_ptr<detail::LaidTows>;
+std::unique_ptr<Rule> MakeAfpSteeringRule(const RuleContext& ctx, LaidTowsPtr laid);
 
 std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   std::vector<std::unique_ptr<Rule>> rules;
@@ -506,6 +510,9 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
     if (ctx.process->needles.size() >= 2) rules.push_back(std::make_unique<StitchWidthRule>(ctx));
     rules.push_back(std::make_unique<StandoffRule>(ctx));
     rules.push_back(std::make_unique<NormalityRule>(ctx));
+  } else {
+    const LaidTowsPtr laid = detail::MakeLaidTows(ctx);
+    rules.push_back(MakeAfpSteeringRule(ctx, laid));
   }
   rules.push_back(std::make_unique<ReachRule>());
   rules.push_back(std::make_unique<JointLimitRule>(ctx));

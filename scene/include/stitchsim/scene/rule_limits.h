@@ -45,6 +45,7 @@ enum class LimitKey : int {
   kAfpBMaxDeg,
   kAfpCMinDeg,
   kAfpCMaxDeg,
+  kAfpSteeringMinMm,  ///< afp.steering_radius min_mm (absent: the head's)
   kCount
 };
 inline constexpr std::size_t kLimitKeyCount = static_cast<std::size_t>(LimitKey::kCount);
