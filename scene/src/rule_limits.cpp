@@ -77,6 +77,11 @@ constexpr LimitSpec kTable[] = {
     {K::kAfpSteeringMinMm, "afp.steering_radius", "min_mm", U::kMm, kNone, false,
      "smallest steering radius of a laid tow's centre line (absent: the head's "
      "`afp.min_steering_radius_mm`)"},
+    {K::kAfpGapMaxMm, "afp.gap", "max_mm", U::kMm, 0.76, false,
+     "largest gap between neighbouring courses of a ply, or left by a tow cut inside a course "
+     "(0.03 in)"},
+    {K::kAfpOverlapMaxMm, "afp.overlap", "max_mm", U::kMm, 0.76, false,
+     "largest overlap of neighbouring courses of a ply (0.03 in)"},
 };
 static_assert(std::size(kTable) == kLimitKeyCount, "one row per LimitKey");
 

@@ -498,6 +498,8 @@ std::unique_ptr<Rule> MakeLineSamplingRule();                              // sa
 // afp_*.cpp: the fibre-placement rules over what the programme lays (one sampler shared).
 using LaidTowsPtr = std::shared_ptr<detail::LaidTows>;
 std::unique_ptr<Rule> MakeAfpSteeringRule(const RuleContext& ctx, LaidTowsPtr laid);
+std::unique_ptr<Rule> MakeAfpGapRule(const RuleContext& ctx, LaidTowsPtr laid);
+std::unique_ptr<Rule> MakeAfpOverlapRule(const RuleContext& ctx, LaidTowsPtr laid);
 
 std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   std::vector<std::unique_ptr<Rule>> rules;
@@ -513,6 +515,8 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   } else {
     const LaidTowsPtr laid = detail::MakeLaidTows(ctx);
     rules.push_back(MakeAfpSteeringRule(ctx, laid));
+    rules.push_back(MakeAfpGapRule(ctx, laid));
+    rules.push_back(MakeAfpOverlapRule(ctx, laid));
   }
   rules.push_back(std::make_unique<ReachRule>());
   rules.push_back(std::make_unique<JointLimitRule>(ctx));

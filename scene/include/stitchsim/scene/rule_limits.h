@@ -46,6 +46,8 @@ enum class LimitKey : int {
   kAfpCMinDeg,
   kAfpCMaxDeg,
   kAfpSteeringMinMm,  ///< afp.steering_radius min_mm (absent: the head's)
+  kAfpGapMaxMm,       ///< afp.gap max_mm
+  kAfpOverlapMaxMm,   ///< afp.overlap max_mm
   kCount
 };
 inline constexpr std::size_t kLimitKeyCount = static_cast<std::size_t>(LimitKey::kCount);
