@@ -500,6 +500,7 @@ using LaidTowsPtr = std::shared_ptr<detail::LaidTows>;
 std::unique_ptr<Rule> MakeAfpSteeringRule(const RuleContext& ctx, LaidTowsPtr laid);
 std::unique_ptr<Rule> MakeAfpGapRule(const RuleContext& ctx, LaidTowsPtr laid);
 std::unique_ptr<Rule> MakeAfpOverlapRule(const RuleContext& ctx, LaidTowsPtr laid);
+std::unique_ptr<Rule> MakeAfpCompactionRule(const RuleContext& ctx, LaidTowsPtr laid);
 
 std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   std::vector<std::unique_ptr<Rule>> rules;
@@ -517,6 +518,7 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
     rules.push_back(MakeAfpSteeringRule(ctx, laid));
     rules.push_back(MakeAfpGapRule(ctx, laid));
     rules.push_back(MakeAfpOverlapRule(ctx, laid));
+    rules.push_back(MakeAfpCompactionRule(ctx, laid));
   }
   rules.push_back(std::make_unique<ReachRule>());
   rules.push_back(std::make_unique<JointLimitRule>(ctx));
