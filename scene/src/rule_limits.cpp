@@ -90,6 +90,10 @@ constexpr LimitSpec kTable[] = {
      "roller axis (tool x) out of the tangent plane while laying"},
     {K::kAfpCompactionMaxLeanDeg, "afp.compaction", "max_lean_deg", U::kDeg, 15.0, false,
      "head axis leaning along the travel (tool y out of the tangent plane) while laying"},
+    {K::kAfpCoverageMaxBarePct, "afp.coverage", "max_bare_pct", U::kPct, 1.0, false,
+     "ply area left bare, outside a band of one tow width along its boundary"},
+    {K::kAfpCoverageMaxDoubledPct, "afp.coverage", "max_doubled_pct", U::kPct, 1.0, false,
+     "ply area laid twice or more, outside a band of one tow width along its boundary"},
 };
 static_assert(std::size(kTable) == kLimitKeyCount, "one row per LimitKey");
 

@@ -501,6 +501,7 @@ std::unique_ptr<Rule> MakeAfpSteeringRule(const RuleContext& ctx, LaidTowsPtr la
 std::unique_ptr<Rule> MakeAfpGapRule(const RuleContext& ctx, LaidTowsPtr laid);
 std::unique_ptr<Rule> MakeAfpOverlapRule(const RuleContext& ctx, LaidTowsPtr laid);
 std::unique_ptr<Rule> MakeAfpCompactionRule(const RuleContext& ctx, LaidTowsPtr laid);
+std::unique_ptr<Rule> MakeAfpCoverageRule(const RuleContext& ctx, LaidTowsPtr laid);
 
 std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   std::vector<std::unique_ptr<Rule>> rules;
@@ -519,6 +520,7 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
     rules.push_back(MakeAfpGapRule(ctx, laid));
     rules.push_back(MakeAfpOverlapRule(ctx, laid));
     rules.push_back(MakeAfpCompactionRule(ctx, laid));
+    if (!ctx.scene->plies.empty()) rules.push_back(MakeAfpCoverageRule(ctx, laid));
   }
   rules.push_back(std::make_unique<ReachRule>());
   rules.push_back(std::make_unique<JointLimitRule>(ctx));
@@ -537,11 +539,16 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
 }
 
 std::vector<SkippedRule> SkippedRules(const RuleContext& ctx) {
-  if (ctx.cell->collision_checked) return {};
+  std::vector<SkippedRule> skipped;
+  if (!ctx.scene->head.IsStitching() && ctx.scene->plies.empty()) {
+    skipped.push_back({"afp.coverage", "the scene has no plies"});
+  }
+  if (ctx.cell->collision_checked) return skipped;
   const std::string reason = "--no-collision";
-  return {{"collision.head_mold", reason},
-          {"collision.robot_cell", reason},
-          {"collision.clearance", reason}};
+  for (const char* id : {"collision.head_mold", "collision.robot_cell", "collision.clearance"}) {
+    skipped.push_back({id, reason});
+  }
+  return skipped;
 }
 
 }  // namespace stitchsim::verify

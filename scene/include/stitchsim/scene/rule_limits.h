@@ -52,6 +52,8 @@ enum class LimitKey : int {
   kAfpCompactionMaxPressMm,
   kAfpCompactionMaxRollDeg,
   kAfpCompactionMaxLeanDeg,
+  kAfpCoverageMaxBarePct,  ///< afp.coverage max_bare_pct
+  kAfpCoverageMaxDoubledPct,
   kCount
 };
 inline constexpr std::size_t kLimitKeyCount = static_cast<std::size_t>(LimitKey::kCount);
