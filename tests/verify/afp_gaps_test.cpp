@@ -109,3 +109,20 @@ TEST(AfpGaps, TowBitsBeyondTheHeadAreFindings) {
 
 }  // namespace
 }  // namespace stitchsim::verify
+
+namespace stitchsim::verify {
+namespace {
+
+// M62 P0 sets all 64 bits of the modal mask: every tow, not bits beyond the head.
+TEST(AfpGaps, AllBitsSetIsEveryTowNotAFinding) {
+  const auto scene = testing::AfpScene(geom::MakePlane(4000, 4000));
+  const Report report = testing::RunLines(
+      *scene, TwoCourses(*scene->surface, 16 * testing::kTowWidth, false, ~std::uint64_t{0}));
+  const RuleSummary* gap = testing::RuleOf(report, "afp.gap");
+  ASSERT_NE(gap, nullptr);
+  EXPECT_EQ(gap->errors, 0);
+  EXPECT_GT(gap->checked, 0);
+}
+
+}  // namespace
+}  // namespace stitchsim::verify

@@ -62,6 +62,9 @@ class CompactionRule final : public Rule {
         off_reported = true;
         continue;
       }
+      laid_points_.Add(pose.cross.centre);
+      laid_points_.Add(pose.cross.boundary.front());
+      laid_points_.Add(pose.cross.boundary.back());
       const Eigen::Vector3d n = laid_->Surface().Normal(pose.cross.centre_uv);
       const double d = (pose.tool.translation() - pose.cross.centre).dot(n);
       const std::array<double, 4> values = {
@@ -84,8 +87,12 @@ class CompactionRule final : public Rule {
     }
   }
 
+  // The laid courses' centre and outer edges (the compaction rule visits every laying pose).
+  std::vector<DrawnPoints> Drawings() const override { return {laid_points_.Drawn("afp_laid")}; }
+
  private:
   std::shared_ptr<detail::LaidTows> laid_;
+  detail::ThinnedPoints laid_points_;
   std::array<double, 4> limits_{};
 };
 

@@ -159,6 +159,7 @@ class CourseEdgeRule final : public Rule {
     const std::optional<double> d = FacingDistance(hash_, p, outward, along, 2.0 * width_mm_);
     if (!d) return;
     const double value = std::max(0.0, gap_ ? *d : -*d);
+    if (value >= kDrawnFromMm) drawn_.Add(p);
     CheckUpper(
         value, line.source_line, 0,
         "course " + std::to_string(line.course) + (side == 0 ? " left" : " right"),
@@ -198,7 +199,13 @@ class CourseEdgeRule final : public Rule {
     }
   }
 
+  std::vector<DrawnPoints> Drawings() const override {
+    return {drawn_.Drawn(gap_ ? "afp_gap" : "afp_overlap")};
+  }
+
+  static constexpr double kDrawnFromMm = 0.1;  ///< smaller gaps and overlaps are not drawn
   std::shared_ptr<detail::LaidTows> laid_;
+  detail::ThinnedPoints drawn_;  ///< edge points with a gap (overlap) of kDrawnFromMm or more
   bool gap_;
   double width_mm_;
   EdgeHash hash_;                     ///< the ply's earlier courses

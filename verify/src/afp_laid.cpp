@@ -44,7 +44,10 @@ const LaidLine* LaidTows::Sample(const trace::LineRecord& line) {
   cached_.ply = line.ply;
   cached_.course = line.course;
   cached_.tows = line.tows & head_tows;
-  cached_.extra_tows = line.tows & ~head_tows;
+  // M62 P0 sets every bit (the modal state does not know the head): all bits beyond the
+  // head's tows set is "every tow", not a mistake.
+  const std::uint64_t beyond = line.tows & ~head_tows;
+  cached_.extra_tows = beyond == ~head_tows ? 0 : beyond;
   cached_.poses.clear();
   const double length = (line.to.translation() - line.from.translation()).norm();
   const int steps =
@@ -60,6 +63,17 @@ const LaidLine* LaidTows::Sample(const trace::LineRecord& line) {
     cached_.poses.push_back(std::move(p));
   }
   return &cached_;
+}
+
+void ThinnedPoints::Add(const Eigen::Vector3d& p) {
+  if (seen_++ % stride_ != 0) return;
+  if (points_.size() == kMaxDrawnPoints) {
+    for (std::size_t i = 0; 2 * i < points_.size(); ++i) points_[i] = points_[2 * i];
+    points_.resize((points_.size() + 1) / 2);
+    stride_ *= 2;
+    if ((seen_ - 1) % stride_ != 0) return;
+  }
+  points_.push_back(p);
 }
 
 std::shared_ptr<LaidTows> MakeLaidTows(const RuleContext& ctx) {

@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "stitchsim/process/afp_tows.h"
@@ -31,9 +32,10 @@ struct LaidLine {
   int source_line = 0;
   int ply = 0;
   int course = 0;
-  std::uint64_t tows = 0;        ///< the line's mask, limited to the head's tows
-  std::uint64_t extra_tows = 0;  ///< bits set beyond the head's tows (lay nothing)
-  std::vector<LaidPose> poses;   ///< fraction 0 .. 1, at most w / 2 apart
+  std::uint64_t tows = 0;  ///< the line's mask, limited to the head's tows
+  /// Bits set beyond the head's tows (they lay nothing); 0 when all of them are set (M62 P0).
+  std::uint64_t extra_tows = 0;
+  std::vector<LaidPose> poses;  ///< fraction 0 .. 1, at most w / 2 apart
 };
 
 /// True when `line` lays material (course, feed move, head down, some tow set).
@@ -63,6 +65,19 @@ class LaidTows {
   LaidLine cached_;
   bool have_hint_ = false;
   Eigen::Vector2d hint_uv_ = Eigen::Vector2d::Zero();  ///< the previous pose's foot
+};
+
+/// At most kMaxDrawnPoints points spread evenly over all added: when full, every other one
+/// is dropped and only every 2nd, 4th, ... later one is kept (for the overview snapshot).
+class ThinnedPoints {
+ public:
+  static constexpr std::size_t kMaxDrawnPoints = 1000;
+  void Add(const Eigen::Vector3d& p);
+  DrawnPoints Drawn(std::string label) const { return {std::move(label), points_}; }
+
+ private:
+  std::vector<Eigen::Vector3d> points_;
+  std::size_t stride_ = 1, seen_ = 0;
 };
 
 /// The sampler every afp.* rule of one verifier shares.
