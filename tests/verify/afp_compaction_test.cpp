@@ -13,14 +13,6 @@ namespace {
 
 using namespace testing;
 
-const SubjectFigure& SubjectOf(const RuleSummary& rule, const std::string& name) {
-  for (const auto& s : rule.subjects) {
-    if (s.subject == name) return s;
-  }
-  ADD_FAILURE() << "no subject " << name;
-  return rule.subjects.front();
-}
-
 TEST(AfpCompaction, LiftRollAndLeanFireOnTheirLinesAgainstTheirLimits) {
   const auto scene = AfpScene(geom::MakePlane(4000, 4000));
   const geom::Surface& s = *scene->surface;

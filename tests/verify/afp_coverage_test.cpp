@@ -36,14 +36,6 @@ std::vector<trace::LineRecord> Courses(const geom::Surface& plane, const std::ve
   return lines;
 }
 
-const SubjectFigure& SubjectOf(const RuleSummary& rule, const std::string& name) {
-  for (const auto& s : rule.subjects) {
-    if (s.subject == name) return s;
-  }
-  ADD_FAILURE() << "no subject " << name;
-  return rule.subjects.front();
-}
-
 TEST(AfpCoverage, FilledPlyIsCoveredOnceAndACourseLeftOutOrDoubledIsItsShare) {
   const auto scene = PlyScene();
   struct Case {

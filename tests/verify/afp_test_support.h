@@ -76,4 +76,13 @@ inline const RuleSummary* RuleOf(const Report& r, const std::string& id) {
   return nullptr;
 }
 
+/// The figure of subject `name` of `rule` (a test failure if it has none).
+inline const SubjectFigure& SubjectOf(const RuleSummary& rule, const std::string& name) {
+  for (const auto& s : rule.subjects) {
+    if (s.subject == name) return s;
+  }
+  ADD_FAILURE() << "no subject " << name;
+  return rule.subjects.front();
+}
+
 }  // namespace stitchsim::verify::testing
