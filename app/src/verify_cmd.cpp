@@ -125,6 +125,13 @@ constexpr std::array<float, 4> kError = {0.95f, 0.05f, 0.05f, 1.0f};
 
 // Overview: every stitch coloured by its verdict (clean stitches thinned to keep the
 // picture within the renderer's geometry budget; flagged ones all drawn).
+// Laid tows in blue, gaps in red, overlaps in magenta.
+std::array<float, 4> DrawnColour(const std::string& label) {
+  if (label == "afp_gap") return kError;
+  if (label == "afp_overlap") return {0.85f, 0.1f, 0.85f, 1.0f};
+  return {0.15f, 0.45f, 0.95f, 1.0f};
+}
+
 int WriteOverview(const LoadedScene& ls, const verify::Verifier& v, const std::string& dir,
                   const sim::JointVector& joints, const Eigen::Isometry3d& tool_world) {
   RenderRequest req;
@@ -152,6 +159,18 @@ int WriteOverview(const LoadedScene& ls, const verify::Verifier& v, const std::s
   }
   for (auto& s : sets) {
     if (!s.points_part_mm.empty()) req.point_sets.push_back(std::move(s));
+  }
+  // What the rules draw (AFP: the laid courses' edges, gaps and overlaps).
+  for (const auto& rule : v.Rules()) {
+    for (auto& drawn : rule->Drawings()) {
+      if (drawn.points_mm.empty()) continue;
+      RenderRequest::PointSet set;
+      set.rgba = DrawnColour(drawn.label);
+      set.radius_scale = drawn.label == "afp_laid" ? 0.5 : 1.0;
+      set.label = std::move(drawn.label);
+      set.points_part_mm = std::move(drawn.points_mm);
+      req.point_sets.push_back(std::move(set));
+    }
   }
   if (req.point_sets.empty()) return kExitOk;
   return RunRenderScene(ls, req);

@@ -74,6 +74,26 @@ constexpr LimitSpec kTable[] = {
      "AFP head C axis travel, lower end"},
     {K::kAfpCMaxDeg, "kin.afp_axes", "c_max_deg", U::kDeg, 180.0, true,
      "AFP head C axis travel, upper end"},
+    {K::kAfpSteeringMinMm, "afp.steering_radius", "min_mm", U::kMm, kNone, false,
+     "smallest steering radius of a laid tow's centre line (absent: the head's "
+     "`afp.min_steering_radius_mm`)"},
+    {K::kAfpGapMaxMm, "afp.gap", "max_mm", U::kMm, 0.76, false,
+     "largest gap between neighbouring courses of a ply, or left by a tow cut inside a course "
+     "(0.03 in)"},
+    {K::kAfpOverlapMaxMm, "afp.overlap", "max_mm", U::kMm, 0.76, false,
+     "largest overlap of neighbouring courses of a ply (0.03 in)"},
+    {K::kAfpCompactionMaxLiftMm, "afp.compaction", "max_lift_mm", U::kMm, 0.25, false,
+     "tool point (roller contact) above the surface while laying"},
+    {K::kAfpCompactionMaxPressMm, "afp.compaction", "max_press_mm", U::kMm, 1.0, false,
+     "tool point below the surface while laying (roller compliance)"},
+    {K::kAfpCompactionMaxRollDeg, "afp.compaction", "max_roll_deg", U::kDeg, 2.0, false,
+     "roller axis (tool x) out of the tangent plane while laying"},
+    {K::kAfpCompactionMaxLeanDeg, "afp.compaction", "max_lean_deg", U::kDeg, 15.0, false,
+     "head axis leaning along the travel (tool y out of the tangent plane) while laying"},
+    {K::kAfpCoverageMaxBarePct, "afp.coverage", "max_bare_pct", U::kPct, 1.0, false,
+     "ply area left bare, outside a band of one tow width along its boundary"},
+    {K::kAfpCoverageMaxDoubledPct, "afp.coverage", "max_doubled_pct", U::kPct, 1.0, false,
+     "ply area laid twice or more, outside a band of one tow width along its boundary"},
 };
 static_assert(std::size(kTable) == kLimitKeyCount, "one row per LimitKey");
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "afp_laid.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/verify/rule.h"
 
@@ -494,6 +495,13 @@ std::unique_ptr<Rule> MakeCollisionClearanceRule(const RuleContext& ctx);
 std::unique_ptr<Rule> MakeConstraintCrossingRule(const RuleContext& ctx);  // constraint_rules.cpp
 std::unique_ptr<Rule> MakeStitchCountRule(const RuleContext& ctx);         // program_rules.cpp
 std::unique_ptr<Rule> MakeLineSamplingRule();                              // sampling_rule.cpp
+// afp_*.cpp: the fibre-placement rules over what the programme lays (one sampler shared).
+using LaidTowsPtr = std::shared_ptr<detail::LaidTows>;
+std::unique_ptr<Rule> MakeAfpSteeringRule(const RuleContext& ctx, LaidTowsPtr laid);
+std::unique_ptr<Rule> MakeAfpGapRule(const RuleContext& ctx, LaidTowsPtr laid);
+std::unique_ptr<Rule> MakeAfpOverlapRule(const RuleContext& ctx, LaidTowsPtr laid);
+std::unique_ptr<Rule> MakeAfpCompactionRule(const RuleContext& ctx, LaidTowsPtr laid);
+std::unique_ptr<Rule> MakeAfpCoverageRule(const RuleContext& ctx, LaidTowsPtr laid);
 
 std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   std::vector<std::unique_ptr<Rule>> rules;
@@ -506,6 +514,13 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
     if (ctx.process->needles.size() >= 2) rules.push_back(std::make_unique<StitchWidthRule>(ctx));
     rules.push_back(std::make_unique<StandoffRule>(ctx));
     rules.push_back(std::make_unique<NormalityRule>(ctx));
+  } else {
+    const LaidTowsPtr laid = detail::MakeLaidTows(ctx);
+    rules.push_back(MakeAfpSteeringRule(ctx, laid));
+    rules.push_back(MakeAfpGapRule(ctx, laid));
+    rules.push_back(MakeAfpOverlapRule(ctx, laid));
+    rules.push_back(MakeAfpCompactionRule(ctx, laid));
+    if (!ctx.scene->plies.empty()) rules.push_back(MakeAfpCoverageRule(ctx, laid));
   }
   rules.push_back(std::make_unique<ReachRule>());
   rules.push_back(std::make_unique<JointLimitRule>(ctx));
@@ -524,11 +539,16 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
 }
 
 std::vector<SkippedRule> SkippedRules(const RuleContext& ctx) {
-  if (ctx.cell->collision_checked) return {};
+  std::vector<SkippedRule> skipped;
+  if (!ctx.scene->head.IsStitching() && ctx.scene->plies.empty()) {
+    skipped.push_back({"afp.coverage", "the scene has no plies"});
+  }
+  if (ctx.cell->collision_checked) return skipped;
   const std::string reason = "--no-collision";
-  return {{"collision.head_mold", reason},
-          {"collision.robot_cell", reason},
-          {"collision.clearance", reason}};
+  for (const char* id : {"collision.head_mold", "collision.robot_cell", "collision.clearance"}) {
+    skipped.push_back({id, reason});
+  }
+  return skipped;
 }
 
 }  // namespace stitchsim::verify

@@ -45,6 +45,15 @@ enum class LimitKey : int {
   kAfpBMaxDeg,
   kAfpCMinDeg,
   kAfpCMaxDeg,
+  kAfpSteeringMinMm,        ///< afp.steering_radius min_mm (absent: the head's)
+  kAfpGapMaxMm,             ///< afp.gap max_mm
+  kAfpOverlapMaxMm,         ///< afp.overlap max_mm
+  kAfpCompactionMaxLiftMm,  ///< afp.compaction max_lift_mm
+  kAfpCompactionMaxPressMm,
+  kAfpCompactionMaxRollDeg,
+  kAfpCompactionMaxLeanDeg,
+  kAfpCoverageMaxBarePct,  ///< afp.coverage max_bare_pct
+  kAfpCoverageMaxDoubledPct,
   kCount
 };
 inline constexpr std::size_t kLimitKeyCount = static_cast<std::size_t>(LimitKey::kCount);

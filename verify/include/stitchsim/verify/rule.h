@@ -47,6 +47,13 @@ struct RuleContext {
   std::optional<long> declared_stitches = std::nullopt;
 };
 
+/// Points a rule asks the overview snapshot to draw, by label ("afp_laid", "afp_gap", ...),
+/// part frame, mm; bounded (thinned evenly) by the rule.
+struct DrawnPoints {
+  std::string label;
+  std::vector<Eigen::Vector3d> points_mm;
+};
+
 class Rule {
  public:
   virtual ~Rule() = default;
@@ -55,6 +62,9 @@ class Rule {
   virtual void OnWindow(const WindowRecord&) {}
   virtual void OnPenetration(const PenetrationRecord&) {}
   virtual void Finish(const RuleContext&) {}
+
+  /// What the rule draws on the overview snapshot (most rules: nothing).
+  virtual std::vector<DrawnPoints> Drawings() const { return {}; }
 
   const RuleSummary& Summary() const { return summary_; }
   /// The trace sample at the worst finding, for the close-up snapshot.

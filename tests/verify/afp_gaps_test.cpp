@@ -1,0 +1,128 @@
+// afp.gap and afp.overlap against closed forms: two straight 16-tow courses on a plane whose
+// centre lines lie 16 w + 1.0 mm apart leave a 1.0 mm gap (fires at 0.76 mm), 16 w - 0.5 mm
+// an overlap of 0.5 mm (passes), 16 w - 1.2 mm an overlap of 1.2 mm (fires), each on the
+// second course's first laying line, whichever way the second course runs; a tow cut inside a
+// course between laid tows is a gap of its width; bits beyond the head's tows are findings.
+#include <gtest/gtest.h>
+
+#include "afp_test_support.h"
+
+namespace stitchsim::verify {
+namespace {
+
+using namespace testing;
+
+// Course 1 along +x at y = 0 (lines 10..13), course 2 at y = `spacing` (lines 20..23), running
+// along +x or back along -x, 4 lines of 100 mm each.
+std::vector<trace::LineRecord> TwoCourses(const geom::Surface& plane, double spacing,
+                                          bool second_backwards, std::uint64_t tows = 0xFFFF) {
+  std::vector<trace::LineRecord> lines;
+  const Eigen::Vector2d x(1, 0);
+  for (int i = 0; i < 4; ++i) {
+    lines.push_back(LayLine(10 + i, ToolAt(plane, Eigen::Vector2d(-200 + 100 * i, 0), x),
+                            ToolAt(plane, Eigen::Vector2d(-100 + 100 * i, 0), x), 0xFFFF, 1));
+  }
+  trace::LineRecord between;  // retract and move over: course 0, lays nothing
+  between.source_line = 15;
+  between.rapid = true;
+  between.head_retracted = true;
+  between.ply = 1;  // the ply stays in force between its courses
+  lines.push_back(between);
+  const double dir = second_backwards ? -1.0 : 1.0;
+  for (int i = 0; i < 4; ++i) {
+    const double u0 = dir * (-200 + 100 * i), u1 = dir * (-100 + 100 * i);
+    lines.push_back(LayLine(20 + i, ToolAt(plane, Eigen::Vector2d(u0, spacing), dir * x),
+                            ToolAt(plane, Eigen::Vector2d(u1, spacing), dir * x), tows, 2));
+  }
+  return lines;
+}
+
+struct Case {
+  double offset_mm;  // centre spacing minus 16 w
+  const char* rule;  // the rule that sees it
+  double value;      // its worst value
+  long errors;       // lines it fires on
+};
+
+TEST(AfpGaps, NeighbouringCoursesGapAndOverlapByTheirSpacing) {
+  const auto scene = AfpScene(geom::MakePlane(4000, 4000));
+  const Case cases[] = {
+      {1.0, "afp.gap", 1.0, 4}, {-0.5, "afp.overlap", 0.5, 0}, {-1.2, "afp.overlap", 1.2, 4}};
+  for (const bool backwards : {false, true}) {
+    for (const Case& c : cases) {
+      SCOPED_TRACE(::testing::Message() << c.offset_mm << (backwards ? " backwards" : ""));
+      const Report report =
+          RunLines(*scene, TwoCourses(*scene->surface, 16 * kTowWidth + c.offset_mm, backwards));
+      const RuleSummary* rule = RuleOf(report, c.rule);
+      ASSERT_NE(rule, nullptr);
+      ASSERT_TRUE(rule->worst_value);
+      EXPECT_NEAR(*rule->worst_value, c.value, 1e-6);
+      EXPECT_EQ(*rule->error_limit, 0.76);
+      EXPECT_EQ(rule->errors, c.errors);
+      if (c.errors > 0) {
+        ASSERT_FALSE(rule->findings.empty());
+        EXPECT_EQ(rule->findings.front().line, 20);
+        EXPECT_NEAR(rule->findings.front().value, c.value, 1e-6);
+      }
+      // The other rule of the pair sees nothing over zero.
+      const RuleSummary* other =
+          RuleOf(report, std::string(c.rule) == "afp.gap" ? "afp.overlap" : "afp.gap");
+      ASSERT_NE(other, nullptr);
+      EXPECT_EQ(other->errors, 0);
+      EXPECT_NEAR(other->worst_value.value_or(0.0), 0.0, 1e-9);
+    }
+  }
+}
+
+TEST(AfpGaps, CoursesFarApartAreNotNeighbours) {
+  const auto scene = AfpScene(geom::MakePlane(4000, 4000));
+  const Report report = RunLines(*scene, TwoCourses(*scene->surface, 16 * kTowWidth + 40, false));
+  const RuleSummary* gap = RuleOf(report, "afp.gap");
+  ASSERT_NE(gap, nullptr);
+  EXPECT_EQ(gap->checked, 0);
+}
+
+TEST(AfpGaps, ATowCutBetweenLaidTowsIsAGapOfItsWidth) {
+  const auto scene = AfpScene(geom::MakePlane(4000, 4000));
+  // Course 2 touches course 1 exactly but lays without tows 5 and 6.
+  const std::uint64_t mask = 0xFFFF & ~std::uint64_t{0x30};
+  const Report report = RunLines(*scene, TwoCourses(*scene->surface, 16 * kTowWidth, false, mask));
+  const RuleSummary* gap = RuleOf(report, "afp.gap");
+  ASSERT_NE(gap, nullptr);
+  EXPECT_NEAR(*gap->worst_value, 2 * kTowWidth, 1e-9);
+  EXPECT_EQ(gap->errors, 4);
+  ASSERT_FALSE(gap->findings.empty());
+  EXPECT_EQ(gap->findings.front().line, 20);
+  EXPECT_EQ(gap->findings.front().subject, "tow 5");
+}
+
+TEST(AfpGaps, TowBitsBeyondTheHeadAreFindings) {
+  const auto scene = AfpScene(geom::MakePlane(4000, 4000));
+  const Report report = RunLines(*scene, TwoCourses(*scene->surface, 16 * kTowWidth, false,
+                                                    0xFFFF | (std::uint64_t{1} << 20)));
+  const RuleSummary* gap = RuleOf(report, "afp.gap");
+  ASSERT_NE(gap, nullptr);
+  EXPECT_EQ(gap->errors, 4);
+  ASSERT_FALSE(gap->findings.empty());
+  EXPECT_EQ(gap->findings.front().subject, "tow mask");
+}
+
+}  // namespace
+}  // namespace stitchsim::verify
+
+namespace stitchsim::verify {
+namespace {
+
+// M62 P0 sets all 64 bits of the modal mask: every tow, not bits beyond the head.
+TEST(AfpGaps, AllBitsSetIsEveryTowNotAFinding) {
+  const auto scene = testing::AfpScene(geom::MakePlane(4000, 4000));
+  const Report report = testing::RunLines(
+      *scene, TwoCourses(*scene->surface, 16 * testing::kTowWidth, false, ~std::uint64_t{0}));
+  const RuleSummary* gap = testing::RuleOf(report, "afp.gap");
+  ASSERT_NE(gap, nullptr);
+  EXPECT_EQ(gap->errors, 0);
+  EXPECT_GT(gap->checked, 0);
+}
+
+}  // namespace
+}  // namespace stitchsim::verify

@@ -1,0 +1,107 @@
+// afp.steering_radius against closed forms: a circular course of radius R on a plane steers
+// its inner tow on R - 7.5 w and its outer on R + 7.5 w; a helix on a cylinder (a geodesic)
+// does not steer though it is curved in space; a course of R = 500 mm (below the head's
+// 635 mm) fires on its first laying line.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "afp_test_support.h"
+
+namespace stitchsim::verify {
+namespace {
+
+using namespace testing;
+
+// A counter-clockwise circular course of radius `r` about the plane's origin, lines from
+// line 10 on, `chord_mm` long, heading along the circle's tangent at each line end.
+std::vector<trace::LineRecord> CircleCourse(const geom::Surface& plane, double r, double chord_mm,
+                                            int count) {
+  const double step = 2.0 * std::asin(0.5 * chord_mm / r);
+  auto pose = [&](int i) {
+    const double a = i * step;
+    return ToolAt(plane, r * Eigen::Vector2d(std::cos(a), std::sin(a)),
+                  Eigen::Vector2d(-std::sin(a), std::cos(a)));
+  };
+  std::vector<trace::LineRecord> lines;
+  trace::LineRecord approach;  // outside any course: lays nothing
+  approach.source_line = 9;
+  approach.rapid = true;
+  approach.head_retracted = true;
+  approach.to = pose(0);
+  lines.push_back(approach);
+  for (int i = 0; i < count; ++i) lines.push_back(LayLine(10 + i, pose(i), pose(i + 1)));
+  return lines;
+}
+
+TEST(AfpSteering, CircularCourseSteersItsInnerAndOuterTowsOnClosedFormRadii) {
+  const auto scene = AfpScene(geom::MakePlane(4000, 4000));
+  const double r = 1000.0;
+  const Report report = RunLines(*scene, CircleCourse(*scene->surface, r, 20.0, 40));
+  const RuleSummary* rule = RuleOf(report, "afp.steering_radius");
+  ASSERT_NE(rule, nullptr);
+  ASSERT_TRUE(rule->worst_value);
+  EXPECT_EQ(rule->errors, 0);
+  EXPECT_EQ(*rule->error_limit, 635.0);  // the head's min_steering_radius_mm
+  ASSERT_EQ(rule->subjects.size(), 16U);
+  const double inner = r - 7.5 * kTowWidth, outer = r + 7.5 * kTowWidth;
+  EXPECT_NEAR(*rule->worst_value, inner, 1e-3 * inner);
+  EXPECT_EQ(rule->subjects.front().subject, "tow 1");
+  EXPECT_NEAR(*rule->subjects.front().worst_value, inner, 1e-3 * inner);
+  EXPECT_NEAR(*rule->subjects.back().worst_value, outer, 1e-3 * outer);
+  for (int t = 1; t <= 16; ++t) {
+    const double expected = r + (t - 8.5) * kTowWidth;
+    EXPECT_NEAR(*rule->subjects[static_cast<std::size_t>(t) - 1].worst_value, expected,
+                1e-3 * expected)
+        << "tow " << t;
+  }
+}
+
+TEST(AfpSteering, HelixOnACylinderIsAGeodesicAndDoesNotSteer) {
+  const auto scene = AfpScene(geom::MakeCylinder(300, true, 2000, 1800));
+  const geom::Surface& s = *scene->surface;
+  const Eigen::Vector2d dir = Eigen::Vector2d(1, 1).normalized();
+  std::vector<trace::LineRecord> lines;
+  for (int i = 0; i < 40; ++i) {
+    lines.push_back(LayLine(10 + i, ToolAt(s, (i * 20.0 - 400) * dir, dir),
+                            ToolAt(s, ((i + 1) * 20.0 - 400) * dir, dir)));
+  }
+  // Curved in space: the centre line's chords turn (about 0.9 deg a line), along the normal.
+  const Eigen::Vector3d a = lines[0].to.translation() - lines[0].from.translation();
+  const Eigen::Vector3d b = lines[1].to.translation() - lines[1].from.translation();
+  EXPECT_GT(std::acos(a.normalized().dot(b.normalized())), 0.01);
+  const Report report = RunLines(*scene, lines);
+  const RuleSummary* rule = RuleOf(report, "afp.steering_radius");
+  ASSERT_NE(rule, nullptr);
+  ASSERT_TRUE(rule->worst_value);
+  EXPECT_GT(rule->checked, 0);
+  EXPECT_GT(*rule->worst_value, 1e5);
+  EXPECT_EQ(rule->errors, 0);
+}
+
+TEST(AfpSteering, CourseOfRadius500FiresOnItsFirstLayingLine) {
+  const auto scene = AfpScene(geom::MakePlane(4000, 4000));
+  const Report report = RunLines(*scene, CircleCourse(*scene->surface, 500, 20.0, 10));
+  const RuleSummary* rule = RuleOf(report, "afp.steering_radius");
+  ASSERT_NE(rule, nullptr);
+  EXPECT_EQ(rule->errors, 10);
+  ASSERT_FALSE(rule->findings.empty());
+  EXPECT_EQ(rule->findings.front().line, 10);
+  EXPECT_EQ(rule->findings.front().subject, "tow 1");
+  EXPECT_NEAR(rule->findings.front().value, 500 - 7.5 * kTowWidth, 0.5);
+  EXPECT_EQ(rule->findings.front().limit, 635.0);
+}
+
+TEST(AfpSteering, LinesOutsideACourseLayNothing) {
+  const auto scene = AfpScene(geom::MakePlane(4000, 4000));
+  auto lines = CircleCourse(*scene->surface, 500, 20.0, 10);
+  for (auto& l : lines) l.course = 0;
+  const Report report = RunLines(*scene, lines);
+  const RuleSummary* rule = RuleOf(report, "afp.steering_radius");
+  ASSERT_NE(rule, nullptr);
+  EXPECT_EQ(rule->checked, 0);
+  EXPECT_EQ(rule->errors, 0);
+}
+
+}  // namespace
+}  // namespace stitchsim::verify

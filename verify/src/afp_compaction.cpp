@@ -1,0 +1,106 @@
+// afp.compaction: how the compaction roller stands on the surface at every laying pose: the
+// tool point on the surface (its distance along the normal from its foot: above = lift, below
+// = press), the roller axis (tool x) in the tangent plane (roll) and the head axis leaning
+// along the travel (tool y out of the tangent plane: seed 003's inclined pressure). Each of
+// the four is a subject with its own limit; the rule's figures are percent of the limit, the
+// findings give the value itself. A pose whose tows leave the surface is an error.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "afp_laid.h"
+
+namespace stitchsim::verify {
+namespace {
+
+using scene::LimitKey;
+
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+struct Measure {
+  const char* subject;
+  const char* unit;
+  const char* what;
+  LimitKey key;
+};
+
+constexpr std::array<Measure, 4> kMeasures = {{
+    {"lift", "mm", "tool point above the surface by", LimitKey::kAfpCompactionMaxLiftMm},
+    {"press", "mm", "tool point below the surface by", LimitKey::kAfpCompactionMaxPressMm},
+    {"roll", "deg", "roller axis out of the tangent plane by", LimitKey::kAfpCompactionMaxRollDeg},
+    {"lean", "deg", "head axis leaning along the travel by", LimitKey::kAfpCompactionMaxLeanDeg},
+}};
+
+class CompactionRule final : public Rule {
+ public:
+  CompactionRule(const RuleContext& ctx, std::shared_ptr<detail::LaidTows> laid)
+      : Rule("afp.compaction",
+             "compaction roller on the surface while laying: tool point lift and press along "
+             "the normal, roller axis roll, head lean along the travel (percent of each limit)",
+             "%"),
+        laid_(std::move(laid)) {
+    summary_.error_limit = 100.0;
+    for (std::size_t i = 0; i < kMeasures.size(); ++i) {
+      limits_[i] = ctx.scene->limits.Value(kMeasures[i].key);
+      AddSubject(kMeasures[i].subject, 100.0, std::nullopt);
+    }
+  }
+
+  void OnLine(const trace::LineRecord& record) override {
+    const detail::LaidLine* line = laid_->Sample(record);
+    if (line == nullptr) return;
+    bool off_reported = false;
+    for (const detail::LaidPose& pose : line->poses) {
+      if (!pose.cross.ok) {
+        if (!off_reported) {
+          Record(FindingSeverity::kError, 0.0, 0.0, line->source_line, 0, "surface",
+                 "the roller's tows leave the surface (or its domain) on this line", nullptr);
+        }
+        off_reported = true;
+        continue;
+      }
+      laid_points_.Add(pose.cross.centre);
+      laid_points_.Add(pose.cross.boundary.front());
+      laid_points_.Add(pose.cross.boundary.back());
+      const Eigen::Vector3d n = laid_->Surface().Normal(pose.cross.centre_uv);
+      const double d = (pose.tool.translation() - pose.cross.centre).dot(n);
+      const std::array<double, 4> values = {
+          std::max(0.0, d), std::max(0.0, -d),
+          std::asin(std::min(1.0, std::abs(pose.tool.linear().col(0).dot(n)))) * kRadToDeg,
+          std::asin(std::min(1.0, std::abs(pose.tool.linear().col(1).dot(n)))) * kRadToDeg};
+      for (std::size_t i = 0; i < kMeasures.size(); ++i) {
+        const double pct = limits_[i] > 0 ? values[i] / limits_[i] * 100.0 : (values[i] > 0) * 1e9;
+        ObserveSubject(i, pct, line->source_line, 0);
+        CheckUpper(
+            pct, line->source_line, 0, kMeasures[i].subject,
+            [&] {
+              char buf[200];
+              std::snprintf(buf, sizeof(buf), "%s %.4g %s (limit %.4g %s):", kMeasures[i].what,
+                            values[i], kMeasures[i].unit, limits_[i], kMeasures[i].unit);
+              return std::string(buf);
+            },
+            nullptr);
+      }
+    }
+  }
+
+  // The laid courses' centre and outer edges (the compaction rule visits every laying pose).
+  std::vector<DrawnPoints> Drawings() const override { return {laid_points_.Drawn("afp_laid")}; }
+
+ private:
+  std::shared_ptr<detail::LaidTows> laid_;
+  detail::ThinnedPoints laid_points_;
+  std::array<double, 4> limits_{};
+};
+
+}  // namespace
+
+std::unique_ptr<Rule> MakeAfpCompactionRule(const RuleContext& ctx,
+                                            std::shared_ptr<detail::LaidTows> laid) {
+  return std::make_unique<CompactionRule>(ctx, std::move(laid));
+}
+
+}  // namespace stitchsim::verify

@@ -1,0 +1,230 @@
+// afp.gap and afp.overlap: the distance between the facing edges of neighbouring courses of a
+// ply. While a course lays, the outermost laid boundary on each side (tool -x and +x) at every
+// pose is compared with the edges of the ply's earlier courses nearby (a spatial hash of their
+// edge segments): the signed distance along the surface across the course (its outward
+// direction in the tangent plane) to the crossing of a facing edge, positive = gap, negative
+// = overlap. A course's own edges join the hash when it ends. afp.gap also counts a run of
+// tows cut inside a course while the tows on both sides lay (a gap of the run's width) and
+// tow bits beyond the head's tows (they lay nothing).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "afp_laid.h"
+#include "stitchsim/geom/surface_walk.h"
+
+namespace stitchsim::verify {
+namespace {
+
+using detail::LaidLine;
+
+// An edge segment of an earlier course, with the direction pointing away from that course.
+struct EdgeSegment {
+  Eigen::Vector3d a, b, outward;
+};
+
+// Edge segments of the ply's courses laid so far, hashed by their midpoints.
+class EdgeHash {
+ public:
+  explicit EdgeHash(double cell_mm) : cell_mm_(cell_mm) {}
+  void Clear() {
+    segments_.clear();
+    cells_.clear();
+  }
+  void Add(const EdgeSegment& s) {
+    cells_[Key(Cell(0.5 * (s.a + s.b)))].push_back(segments_.size());
+    segments_.push_back(s);
+  }
+  // Calls f(segment) for every segment whose midpoint lies within one cell of `p`.
+  template <typename F>
+  void Near(const Eigen::Vector3d& p, F&& f) const {
+    const Eigen::Vector3i c = Cell(p);
+    for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find(Key(c + Eigen::Vector3i(dx, dy, dz)));
+          if (it == cells_.end()) continue;
+          for (const std::size_t i : it->second) f(segments_[i]);
+        }
+      }
+    }
+  }
+
+ private:
+  Eigen::Vector3i Cell(const Eigen::Vector3d& p) const {
+    return (p / cell_mm_).array().floor().cast<int>();
+  }
+  static std::int64_t Key(const Eigen::Vector3i& c) {
+    const auto part = [](int v) { return static_cast<std::int64_t>(v & 0x1FFFFF); };
+    return (part(c.x()) << 42) | (part(c.y()) << 21) | part(c.z());
+  }
+  double cell_mm_;
+  std::vector<EdgeSegment> segments_;
+  std::unordered_map<std::int64_t, std::vector<std::size_t>> cells_;
+};
+
+// The signed distance from edge point `p` (outward `o`, along `t`) to the nearest facing edge
+// segment crossing the line p + s o, if one lies within `reach_mm`.
+std::optional<double> FacingDistance(const EdgeHash& hash, const Eigen::Vector3d& p,
+                                     const Eigen::Vector3d& o, const Eigen::Vector3d& t,
+                                     double reach_mm) {
+  std::optional<double> best;
+  hash.Near(p, [&](const EdgeSegment& s) {
+    if (s.outward.dot(o) > -0.5) return;  // not facing this edge
+    const double at = (s.a - p).dot(t), bt = (s.b - p).dot(t);
+    if (at * bt > 0.0 || at == bt) return;  // does not cross the line across the course
+    const double ao = (s.a - p).dot(o), bo = (s.b - p).dot(o);
+    const double d = ao + (bo - ao) * (at / (at - bt));
+    if (std::abs(d) <= reach_mm && (!best || std::abs(d) < std::abs(*best))) best = d;
+  });
+  return best;
+}
+
+class CourseEdgeRule final : public Rule {
+ public:
+  // `gap`: afp.gap (positive distances); else afp.overlap (negative distances).
+  CourseEdgeRule(const RuleContext& ctx, std::shared_ptr<detail::LaidTows> laid, bool gap)
+      : Rule(gap ? "afp.gap" : "afp.overlap",
+             gap ? "gap between the facing edges of neighbouring courses of a ply, and tows cut "
+                   "inside a course between laid ones"
+                 : "overlap of the facing edges of neighbouring courses of a ply",
+             "mm"),
+        laid_(std::move(laid)),
+        gap_(gap),
+        width_mm_(laid_->Layout().width_mm),
+        hash_(2.5 * width_mm_) {
+    summary_.error_limit = ctx.scene->limits.Get(gap ? scene::LimitKey::kAfpGapMaxMm
+                                                     : scene::LimitKey::kAfpOverlapMaxMm);
+  }
+
+  void OnLine(const trace::LineRecord& record) override {
+    if (record.ply != ply_) {
+      hash_.Clear();
+      pending_.clear();
+      ply_ = record.ply;
+    }
+    if (record.course != course_) EndCourse(record.course);
+    const LaidLine* line = laid_->Sample(record);
+    if (line == nullptr) {
+      for (Side& s : sides_) s.have = false;
+      return;
+    }
+    if (gap_) CheckTowMask(*line);
+    int lo = 0, hi = 0;  // leftmost and rightmost laid tow
+    for (int t = 1; t <= laid_->Layout().tows; ++t) {
+      if (!detail::TowLaid(line->tows, t)) continue;
+      if (lo == 0) lo = t;
+      hi = t;
+    }
+    if (lo == 0) return;  // only bits beyond the head's tows
+    for (const detail::LaidPose& pose : line->poses) {
+      if (!pose.cross.ok) {
+        for (Side& s : sides_) s.have = false;
+        continue;
+      }
+      const Eigen::Vector3d n = laid_->Surface().Normal(pose.cross.centre_uv);
+      const Eigen::Vector3d x = geom::Tangential(pose.tool.linear().col(0), n);
+      const Eigen::Vector3d t = geom::Tangential(pose.tool.linear().col(1), n);
+      Edge(0, pose.cross.boundary[static_cast<std::size_t>(lo) - 1], -x, t, *line, lo);
+      Edge(1, pose.cross.boundary[static_cast<std::size_t>(hi)], x, t, *line, hi);
+    }
+  }
+
+ private:
+  struct Side {
+    bool have = false;
+    Eigen::Vector3d last = Eigen::Vector3d::Zero();
+  };
+
+  void EndCourse(int next_course) {
+    for (const EdgeSegment& s : pending_) hash_.Add(s);
+    pending_.clear();
+    for (Side& s : sides_) s.have = false;
+    course_ = next_course;
+  }
+
+  // One edge point of the laying course: measured against the earlier courses, then kept.
+  void Edge(int side, const Eigen::Vector3d& p, const Eigen::Vector3d& outward,
+            const Eigen::Vector3d& along, const LaidLine& line, int tow) {
+    Side& s = sides_[side];
+    // Consecutive points of one edge join (a tow cut or added makes the edge jump across).
+    if (s.have && (p - s.last).norm() < 0.75 * width_mm_) pending_.push_back({s.last, p, outward});
+    s.have = true;
+    s.last = p;
+    const std::optional<double> d = FacingDistance(hash_, p, outward, along, 2.0 * width_mm_);
+    if (!d) return;
+    const double value = std::max(0.0, gap_ ? *d : -*d);
+    if (value >= kDrawnFromMm) drawn_.Add(p);
+    CheckUpper(
+        value, line.source_line, 0,
+        "course " + std::to_string(line.course) + (side == 0 ? " left" : " right"),
+        [&] {
+          char buf[160];
+          std::snprintf(buf, sizeof(buf), "%s beside tow %d of course %d (%s edge) to a neighbour",
+                        gap_ ? "gap" : "overlap", tow, line.course, side == 0 ? "left" : "right");
+          return std::string(buf);
+        },
+        nullptr);
+  }
+
+  // Runs of cut tows with laid tows on both sides leave a gap of their width.
+  void CheckTowMask(const LaidLine& line) {
+    if (line.extra_tows != 0) {
+      char buf[160];
+      std::snprintf(buf, sizeof(buf),
+                    "the tow mask sets bits beyond the head's %d tows (they lay nothing)",
+                    laid_->Layout().tows);
+      Record(FindingSeverity::kError, 0.0, *summary_.error_limit, line.source_line, 0, "tow mask",
+             buf, nullptr);
+    }
+    int last_laid = 0;
+    for (int t = 1; t <= laid_->Layout().tows; ++t) {
+      if (!detail::TowLaid(line.tows, t)) continue;
+      if (last_laid != 0 && t - last_laid > 1) {
+        const double gap = (t - last_laid - 1) * width_mm_;
+        CheckUpper(
+            gap, line.source_line, 0, "tow " + std::to_string(last_laid + 1),
+            [&] {
+              return "tows " + std::to_string(last_laid + 1) + ".." + std::to_string(t - 1) +
+                     " cut between laid tows in course " + std::to_string(line.course) + ": gap";
+            },
+            nullptr);
+      }
+      last_laid = t;
+    }
+  }
+
+  std::vector<DrawnPoints> Drawings() const override {
+    return {drawn_.Drawn(gap_ ? "afp_gap" : "afp_overlap")};
+  }
+
+  static constexpr double kDrawnFromMm = 0.1;  ///< smaller gaps and overlaps are not drawn
+  std::shared_ptr<detail::LaidTows> laid_;
+  detail::ThinnedPoints drawn_;  ///< edge points with a gap (overlap) of kDrawnFromMm or more
+  bool gap_;
+  double width_mm_;
+  EdgeHash hash_;                     ///< the ply's earlier courses
+  std::vector<EdgeSegment> pending_;  ///< the laying course's edges
+  Side sides_[2];                     ///< left, right
+  int ply_ = 0;
+  int course_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Rule> MakeAfpGapRule(const RuleContext& ctx,
+                                     std::shared_ptr<detail::LaidTows> laid) {
+  return std::make_unique<CourseEdgeRule>(ctx, std::move(laid), true);
+}
+
+std::unique_ptr<Rule> MakeAfpOverlapRule(const RuleContext& ctx,
+                                         std::shared_ptr<detail::LaidTows> laid) {
+  return std::make_unique<CourseEdgeRule>(ctx, std::move(laid), false);
+}
+
+}  // namespace stitchsim::verify

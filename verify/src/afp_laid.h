@@ -1,0 +1,90 @@
+#pragma once
+// Private to verify: the material an AFP programme lays, line by line (docs/afp.md, "Tows";
+// docs/report-format.md, the afp.* rules). A line lays tow t from its `from` pose to its `to`
+// pose when it belongs to a course (`course != 0`), is a feed move and the head is lowered,
+// and bit t - 1 of its tow mask is set. Its tool poses are interpolated as the executor moves
+// (process::InterpolatePose) at most half a tow width apart, and the tow boundaries at each
+// pose come from process::TowsAt, the model the ply planner places them with. One line is
+// held at a time: memory does not grow with the programme. Shared by every afp.* rule; the
+// first rule to ask for a line samples it, the others reuse it.
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "stitchsim/process/afp_tows.h"
+#include "stitchsim/trace/trace.h"
+#include "stitchsim/verify/rule.h"
+
+namespace stitchsim::verify::detail {
+
+/// One tool pose along a laying line and the tow boundaries under it.
+struct LaidPose {
+  double fraction = 0.0;                                   ///< 0..1 along the line
+  Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();  ///< part frame, mm
+  process::TowCross cross;  ///< cross.ok false: the roller is off the surface here
+};
+
+/// One laying line as sampled.
+struct LaidLine {
+  int source_line = 0;
+  int ply = 0;
+  int course = 0;
+  std::uint64_t tows = 0;  ///< the line's mask, limited to the head's tows
+  /// Bits set beyond the head's tows (they lay nothing); 0 when all of them are set (M62 P0).
+  std::uint64_t extra_tows = 0;
+  std::vector<LaidPose> poses;  ///< fraction 0 .. 1, at most w / 2 apart
+};
+
+/// True when `line` lays material (course, feed move, head down, some tow set).
+bool IsLayingLine(const trace::LineRecord& line);
+
+/// True when tow `tow` (1-based) is set in `mask`.
+inline bool TowLaid(std::uint64_t mask, int tow) { return ((mask >> (tow - 1)) & 1U) != 0; }
+
+class LaidTows {
+ public:
+  LaidTows(const geom::Surface& surface, const process::TowLayout& layout);
+  /// The sampled line when `line` lays material, else nullptr (and the pose chain resets).
+  /// Asking again for the same line record returns the same sampling.
+  const LaidLine* Sample(const trace::LineRecord& line);
+  const process::TowLayout& Layout() const { return layout_; }
+  const geom::Surface& Surface() const { return *surface_; }
+
+ private:
+  bool SameAsCached(const trace::LineRecord& line) const;
+
+  const geom::Surface* surface_;
+  process::TowLayout layout_;
+  double spacing_mm_;
+  bool have_cached_ = false;
+  bool cached_laying_ = false;
+  trace::LineRecord cached_record_;
+  LaidLine cached_;
+  bool have_hint_ = false;
+  Eigen::Vector2d hint_uv_ = Eigen::Vector2d::Zero();  ///< the previous pose's foot
+};
+
+/// At most kMaxDrawnPoints points spread evenly over all added: when full, every other one
+/// is dropped and only every 2nd, 4th, ... later one is kept (for the overview snapshot).
+class ThinnedPoints {
+ public:
+  static constexpr std::size_t kMaxDrawnPoints = 1000;
+  void Add(const Eigen::Vector3d& p);
+  DrawnPoints Drawn(std::string label) const { return {std::move(label), points_}; }
+
+ private:
+  std::vector<Eigen::Vector3d> points_;
+  std::size_t stride_ = 1, seen_ = 0;
+};
+
+/// The sampler every afp.* rule of one verifier shares.
+std::shared_ptr<LaidTows> MakeLaidTows(const RuleContext& ctx);
+
+/// Tow `tow`'s (1-based) centre on the surface at a pose: the surface point midway (in
+/// (u, v)) between its two boundaries.
+Eigen::Vector2d TowCentreUv(const process::TowCross& cross, int tow);
+
+}  // namespace stitchsim::verify::detail
