@@ -96,6 +96,26 @@ TEST(AfpGaps, ATowCutBetweenLaidTowsIsAGapOfItsWidth) {
   EXPECT_EQ(gap->findings.front().subject, "tow 5");
 }
 
+// Where the course's centre passes within half a course and a tow width of its ply's boundary
+// the coverage policy cuts tows one by one (afp.coverage judges what is left bare): a hole
+// there is not a gap finding; the same hole in the ply's interior is.
+TEST(AfpGaps, ATowCutAtThePlyBoundaryIsLeftToTheCoveragePolicy) {
+  auto scene = AfpScene(geom::MakePlane(4000, 4000));
+  scene::PlySpec ply;
+  ply.name = "p";
+  ply.boundary_uv = {{-200, -60}, {200, -60}, {200, 170}, {-200, 170}};
+  scene->plies.push_back(ply);
+  const std::uint64_t mask = 0xFFFF & ~std::uint64_t{0x30};
+  const Report report = RunLines(*scene, TwoCourses(*scene->surface, 16 * kTowWidth, false, mask));
+  const RuleSummary* gap = RuleOf(report, "afp.gap");
+  ASSERT_NE(gap, nullptr);
+  // Lines 20 (u -200..-100) and 23 (100..200) reach the ply's ends; 21 and 22 do not.
+  EXPECT_EQ(gap->errors, 2);
+  ASSERT_EQ(gap->findings.size(), 2u);
+  EXPECT_EQ(gap->findings[0].line, 21);
+  EXPECT_EQ(gap->findings[1].line, 22);
+}
+
 TEST(AfpGaps, TowBitsBeyondTheHeadAreFindings) {
   const auto scene = AfpScene(geom::MakePlane(4000, 4000));
   const Report report = RunLines(*scene, TwoCourses(*scene->surface, 16 * kTowWidth, false,

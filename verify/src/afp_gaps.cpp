@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "afp_laid.h"
+#include "stitchsim/geom/polygon2.h"
 #include "stitchsim/geom/surface_walk.h"
 
 namespace stitchsim::verify {
@@ -100,6 +101,7 @@ class CourseEdgeRule final : public Rule {
         hash_(2.5 * width_mm_) {
     summary_.error_limit = ctx.scene->limits.Get(gap ? scene::LimitKey::kAfpGapMaxMm
                                                      : scene::LimitKey::kAfpOverlapMaxMm);
+    for (const scene::PlySpec& ply : ctx.scene->plies) boundaries_.push_back(ply.boundary_uv);
   }
 
   void OnLine(const trace::LineRecord& record) override {
@@ -172,7 +174,24 @@ class CourseEdgeRule final : public Rule {
         nullptr);
   }
 
-  // Runs of cut tows with laid tows on both sides leave a gap of their width.
+  // True when the course's centre passes within half a course and a tow width of the boundary
+  // of the line's ply (M70 P<n>: the n-th of the scene's plies) on this line: where the coverage
+  // policy cuts tows one by one across a boundary that meets the course at a slant or curves
+  // under it, and afp.coverage judges what is left bare.
+  bool AtPlyBoundary(const LaidLine& line) const {
+    if (line.ply < 1 || line.ply > static_cast<int>(boundaries_.size())) return false;
+    const geom::Polygon2& boundary = boundaries_[static_cast<std::size_t>(line.ply - 1)];
+    const double reach = (0.5 * laid_->Layout().tows + 1.0) * width_mm_;
+    for (const detail::LaidPose& pose : line.poses) {
+      if (pose.cross.ok && geom::DistanceToPolygon(boundary, pose.cross.centre_uv) <= reach) {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  // Runs of cut tows with laid tows on both sides leave a gap of their width, away from the
+  // ply's boundary.
   void CheckTowMask(const LaidLine& line) {
     if (line.extra_tows != 0) {
       char buf[160];
@@ -182,6 +201,7 @@ class CourseEdgeRule final : public Rule {
       Record(FindingSeverity::kError, 0.0, *summary_.error_limit, line.source_line, 0, "tow mask",
              buf, nullptr);
     }
+    if (AtPlyBoundary(line)) return;
     int last_laid = 0;
     for (int t = 1; t <= laid_->Layout().tows; ++t) {
       if (!detail::TowLaid(line.tows, t)) continue;
@@ -208,9 +228,10 @@ class CourseEdgeRule final : public Rule {
   detail::ThinnedPoints drawn_;  ///< edge points with a gap (overlap) of kDrawnFromMm or more
   bool gap_;
   double width_mm_;
-  EdgeHash hash_;                     ///< the ply's earlier courses
-  std::vector<EdgeSegment> pending_;  ///< the laying course's edges
-  Side sides_[2];                     ///< left, right
+  std::vector<geom::Polygon2> boundaries_;  ///< the scene's plies, (u, v)
+  EdgeHash hash_;                           ///< the ply's earlier courses
+  std::vector<EdgeSegment> pending_;        ///< the laying course's edges
+  Side sides_[2];                           ///< left, right
   int ply_ = 0;
   int course_ = 0;
 };
