@@ -77,6 +77,10 @@ constexpr LimitSpec kTable[] = {
     {K::kAfpSteeringMinMm, "afp.steering_radius", "min_mm", U::kMm, kNone, false,
      "smallest steering radius of a laid tow's centre line (absent: the head's "
      "`afp.min_steering_radius_mm`)"},
+    {K::kAfpCoverageMaxBarePct, "afp.coverage", "max_bare_pct", U::kPct, 2.0, false,
+     "area of a ply left bare, beyond the band of one tow width along its boundary, percent"},
+    {K::kAfpCoverageMaxDoubledPct, "afp.coverage", "max_doubled_pct", U::kPct, 5.0, false,
+     "area of a ply covered twice or more, beyond the band along its boundary, percent"},
 };
 static_assert(std::size(kTable) == kLimitKeyCount, "one row per LimitKey");
 

@@ -498,6 +498,7 @@ std::unique_ptr<Rule> MakeLineSamplingRule();                              // sa
 // afp_*.cpp: the fibre-placement rules over what the programme lays (one sampler shared).
 using LaidTowsPtr = std::shared_ptr<detail::LaidTows>;
 std::unique_ptr<Rule> MakeAfpSteeringRule(const RuleContext& ctx, LaidTowsPtr laid);
+std::unique_ptr<Rule> MakeAfpCoverageRule(const RuleContext& ctx, LaidTowsPtr laid);
 
 std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   std::vector<std::unique_ptr<Rule>> rules;
@@ -513,6 +514,7 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   } else {
     const LaidTowsPtr laid = detail::MakeLaidTows(ctx);
     rules.push_back(MakeAfpSteeringRule(ctx, laid));
+    if (!ctx.scene->plies.empty()) rules.push_back(MakeAfpCoverageRule(ctx, laid));
   }
   rules.push_back(std::make_unique<ReachRule>());
   rules.push_back(std::make_unique<JointLimitRule>(ctx));
@@ -531,11 +533,16 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
 }
 
 std::vector<SkippedRule> SkippedRules(const RuleContext& ctx) {
-  if (ctx.cell->collision_checked) return {};
+  std::vector<SkippedRule> skipped;
+  if (!ctx.scene->head.IsStitching() && ctx.scene->plies.empty()) {
+    skipped.push_back({"afp.coverage", "the scene has no plies"});
+  }
+  if (ctx.cell->collision_checked) return skipped;
   const std::string reason = "--no-collision";
-  return {{"collision.head_mold", reason},
-          {"collision.robot_cell", reason},
-          {"collision.clearance", reason}};
+  for (const char* id : {"collision.head_mold", "collision.robot_cell", "collision.clearance"}) {
+    skipped.push_back({id, reason});
+  }
+  return skipped;
 }
 
 }  // namespace stitchsim::verify

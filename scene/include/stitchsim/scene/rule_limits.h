@@ -45,7 +45,9 @@ enum class LimitKey : int {
   kAfpBMaxDeg,
   kAfpCMinDeg,
   kAfpCMaxDeg,
-  kAfpSteeringMinMm,  ///< afp.steering_radius min_mm (absent: the head's)
+  kAfpSteeringMinMm,          ///< afp.steering_radius min_mm (absent: the head's)
+  kAfpCoverageMaxBarePct,     ///< afp.coverage max_bare_pct
+  kAfpCoverageMaxDoubledPct,  ///< afp.coverage max_doubled_pct
   kCount
 };
 inline constexpr std::size_t kLimitKeyCount = static_cast<std::size_t>(LimitKey::kCount);
