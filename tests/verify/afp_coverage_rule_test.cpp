@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "afp_test_support.h"
+#include "stitchsim/verify/afp_coverage_image.h"
 
 namespace stitchsim::verify {
 namespace {
@@ -95,6 +96,42 @@ TEST(AfpCoverageRule, CourseLaidTwiceFiresDoubledOnTheSecondLaying) {
   ASSERT_EQ(rule->findings.size(), 1U);
   EXPECT_EQ(rule->findings[0].subject, "p0 doubled");
   EXPECT_EQ(rule->findings[0].line, 900);
+}
+
+// The snapshot's picture: the missing course's middle is a gap, the course laid twice an
+// overlap, the others laid tows, and the corner of the box (outside the ply) empty.
+TEST(AfpCoverageRule, CoverageImageShowsTowsGapsAndOverlapsWhereTheyLie) {
+  const auto scene = PlyScene();
+  std::vector<trace::LineRecord> lines;
+  for (int c : {0, 1, 3}) AddCourse(*scene->surface, c, c + 1, 100 * (c + 1), lines);
+  AddCourse(*scene->surface, 1, 5, 900, lines);
+  const process::ProcessModel model = process::MakeProcessModel(*scene, 5.0);
+  trace::CellDescription cell;
+  Verifier v(RuleContext{scene.get(), &cell, &model}, false);
+  for (const auto& l : lines) v.OnLine(l);
+  Report r;
+  v.Finish(r);
+  const std::vector<CoverageImage> images = CoverageImages(v, 400);
+  ASSERT_EQ(images.size(), 1U);
+  const CoverageImage& img = images[0];
+  EXPECT_EQ(img.ply, 1);
+  EXPECT_EQ(img.name, "p0");
+  EXPECT_LE(std::max(img.width, img.height), 400);
+  auto at = [&](double u, double v) {
+    const int x =
+        static_cast<int>((u - img.lo_uv.x()) / (img.hi_uv.x() - img.lo_uv.x()) * img.width);
+    const int y =
+        img.height - 1 -
+        static_cast<int>((v - img.lo_uv.y()) / (img.hi_uv.y() - img.lo_uv.y()) * img.height);
+    return img.pixels[static_cast<std::size_t>(y * img.width + x)];
+  };
+  const double mid_v = kLength / 2;
+  EXPECT_EQ(at(0.5 * kCourse, mid_v), CoverageState::kLaid);
+  EXPECT_EQ(at(1.5 * kCourse, mid_v), CoverageState::kDoubled);
+  EXPECT_EQ(at(2.5 * kCourse, mid_v), CoverageState::kBare);
+  EXPECT_EQ(at(3.5 * kCourse, mid_v), CoverageState::kLaid);
+  EXPECT_EQ(at(2.5 * kCourse, 2.0), CoverageState::kBoundaryBare);  // in the band
+  EXPECT_EQ(at(img.lo_uv.x() + 1, img.lo_uv.y() + 1), CoverageState::kNone);
 }
 
 TEST(AfpCoverageRule, SceneWithoutPliesSkipsTheRule) {

@@ -6,6 +6,7 @@
 // coverage policy governs), as percent of the ply's area beyond that band; material laid
 // outside is reported as a figure. A finding names the line that laid the course nearest the
 // worst bare (doubled) patch.
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -14,6 +15,7 @@
 
 #include "afp_laid.h"
 #include "stitchsim/process/afp_coverage.h"
+#include "stitchsim/verify/afp_coverage_image.h"
 
 namespace stitchsim::verify {
 namespace {
@@ -30,6 +32,26 @@ std::unique_ptr<process::CoverageMap> MapFor(const geom::Surface& surface,
   const double margin = (layout.tows + 1) * layout.width_mm;
   return std::make_unique<process::CoverageMap>(surface, lo.array() - margin, hi.array() + margin,
                                                 layout.width_mm / 4);
+}
+
+// Halves `img` (each pixel the worst of four) until its longer side fits `max_side`.
+void Shrink(CoverageImage& img, int max_side) {
+  constexpr int kRank[] = {0, 1, 4, 5, 2, 3};
+  while (std::max(img.width, img.height) > std::max(1, max_side)) {
+    const int w = (img.width + 1) / 2, h = (img.height + 1) / 2;
+    std::vector<CoverageState> px(static_cast<std::size_t>(w) * static_cast<std::size_t>(h),
+                                  CoverageState::kNone);
+    for (int y = 0; y < img.height; ++y) {
+      for (int x = 0; x < img.width; ++x) {
+        const CoverageState s = img.pixels[static_cast<std::size_t>(y * img.width + x)];
+        CoverageState& d = px[static_cast<std::size_t>((y / 2) * w + x / 2)];
+        if (kRank[static_cast<int>(s)] > kRank[static_cast<int>(d)]) d = s;
+      }
+    }
+    img.pixels = std::move(px);
+    img.width = w;
+    img.height = h;
+  }
 }
 
 class CoverageRule final : public Rule {
@@ -70,6 +92,10 @@ class CoverageRule final : public Rule {
     }
   }
 
+  /// The plies' pictures, made at Finish (at most kImageSide pixels a side).
+  const std::vector<CoverageImage>& Images() const { return images_; }
+  static constexpr int kImageSide = 1600;
+
   void Finish(const RuleContext&) override {
     EndCourse();
     for (auto& [index, ply] : plies_laid_) {
@@ -80,6 +106,7 @@ class CoverageRule final : public Rule {
       const double bare = area > 0 ? 100.0 * cov.bare_beyond_band_mm2 / area : 0.0;
       const double doubled = area > 0 ? 100.0 * cov.doubled_beyond_band_mm2 / area : 0.0;
       const double outside = area > 0 ? 100.0 * cov.laid_outside_beyond_band_mm2 / area : 0.0;
+      images_.push_back(ImageOf(*ply.map, spec, index));
       const int bare_line = LineNear(ply, cov.worst_bare_uv);
       const int doubled_line = LineNear(ply, cov.worst_doubled_uv);
       Counted();
@@ -106,6 +133,46 @@ class CoverageRule final : public Rule {
   void EndCourse() {
     const auto it = plies_laid_.find(ply_);
     if (it != plies_laid_.end()) it->second.map->EndCourse();
+  }
+
+  // The ply's picture: each pixel a block of cells showing its worst state.
+  CoverageImage ImageOf(const process::CoverageMap& map, const scene::PlySpec& spec,
+                        int index) const {
+    const process::CoverageGrid& g = map.Grid();
+    const std::vector<std::uint8_t> cls =
+        process::ClassifyCells(g, spec.boundary_uv, laid_->Layout().width_mm);
+    const int block = std::max(1, (std::max(g.nu, g.nv) + kImageSide - 1) / kImageSide);
+    CoverageImage img;
+    img.ply = index;
+    img.name = spec.name;
+    img.width = (g.nu + block - 1) / block;
+    img.height = (g.nv + block - 1) / block;
+    img.lo_uv = g.origin_uv;
+    img.hi_uv = g.origin_uv + Eigen::Vector2d(g.nu * g.cell_uv.x(), g.nv * g.cell_uv.y());
+    img.pixels.assign(static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height),
+                      CoverageState::kNone);
+    auto rank = [](CoverageState s) {
+      constexpr int kRank[] = {0, 1, 4, 5, 2, 3};  // doubled > bare > band bare > outside > laid
+      return kRank[static_cast<int>(s)];
+    };
+    for (int iv = 0; iv < g.nv; ++iv) {
+      for (int iu = 0; iu < g.nu; ++iu) {
+        const std::uint8_t c = cls[static_cast<std::size_t>(iv) * static_cast<std::size_t>(g.nu) +
+                                   static_cast<std::size_t>(iu)];
+        const int count = map.Count(iu, iv);
+        const bool inside = c == 1 || c == 2;
+        CoverageState s = CoverageState::kNone;
+        if (inside && count == 0) s = c == 2 ? CoverageState::kBare : CoverageState::kBoundaryBare;
+        if (inside && count == 1) s = CoverageState::kLaid;
+        if (inside && count >= 2) s = CoverageState::kDoubled;
+        if (!inside && count >= 1) s = CoverageState::kOutside;
+        CoverageState& px = img.pixels[static_cast<std::size_t>(img.height - 1 - iv / block) *
+                                           static_cast<std::size_t>(img.width) +
+                                       static_cast<std::size_t>(iu / block)];
+        if (rank(s) > rank(px)) px = s;
+      }
+    }
+    return img;
   }
 
   static int LineNear(const Ply& ply, const Eigen::Vector2d& uv) {
@@ -138,9 +205,21 @@ class CoverageRule final : public Rule {
   double max_bare_, max_doubled_;
   std::map<int, Ply> plies_laid_;  ///< by ply number (M70 P<n>), the plies the programme lays
   int ply_ = 0, course_ = 0;       ///< the course being laid
+  std::vector<CoverageImage> images_;
 };
 
 }  // namespace
+
+std::vector<CoverageImage> CoverageImages(const Verifier& verifier, int max_side) {
+  for (const auto& rule : verifier.Rules()) {
+    if (const auto* c = dynamic_cast<const CoverageRule*>(rule.get())) {
+      std::vector<CoverageImage> out = c->Images();
+      for (CoverageImage& img : out) Shrink(img, max_side);
+      return out;
+    }
+  }
+  return {};
+}
 
 std::unique_ptr<Rule> MakeAfpCoverageRule(const RuleContext& ctx,
                                           std::shared_ptr<detail::LaidTows> laid) {
