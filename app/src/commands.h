@@ -13,6 +13,7 @@
 #include "stitchsim/sim/kinematics.h"
 #include "stitchsim/trace/trace_file.h"
 #include "stitchsim/verify/report.h"
+#include "stitchsim/verify/verifier.h"
 
 namespace stitchsim::app {
 
@@ -36,6 +37,9 @@ verify::Report RunReport(const std::string& program_file, const std::string& sce
 /// Writes the JSON and JUnit reports (those asked for; whole or not at all, as a set) and
 /// prints the text report; kExitOk, or kExitBadInput (printed) when a file cannot be written.
 int WriteReports(const verify::Report& report, const std::string& json, const std::string& junit);
+/// Writes coverage_ply<n>.png into `dir` for each ply afp.coverage measured (afp_snapshot.cpp);
+/// kExitOk, or kExitBadInput (printed) when a file cannot be written.
+int WriteAfpCoverageSnapshots(const verify::Verifier& verifier, const std::string& dir);
 
 /// A reachable pose for the robot to be drawn in (home when IK fails).
 struct StartPose {

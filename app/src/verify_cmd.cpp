@@ -288,6 +288,7 @@ int RunVerify(const VerifyArgs& a) {
       PrintError("io-write", "cannot create snapshot folder " + a.snapshots + ": " + ec.message());
       return kExitBadInput;
     }
+    if (WriteAfpCoverageSnapshots(verifier, a.snapshots) != kExitOk) return kExitBadInput;
     // The overview shows the robot clear above the start of the scene's first path.
     Eigen::Isometry3d approach = PathStartTool(*ls->scene, ls->scene->paths.front());
     approach.translation() += 400.0 * approach.linear().col(2);

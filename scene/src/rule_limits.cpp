@@ -90,10 +90,10 @@ constexpr LimitSpec kTable[] = {
      "roller axis (tool x) out of the tangent plane while laying"},
     {K::kAfpCompactionMaxLeanDeg, "afp.compaction", "max_lean_deg", U::kDeg, 15.0, false,
      "head axis leaning along the travel (tool y out of the tangent plane) while laying"},
-    {K::kAfpCoverageMaxBarePct, "afp.coverage", "max_bare_pct", U::kPct, 1.0, false,
-     "ply area left bare, outside a band of one tow width along its boundary"},
-    {K::kAfpCoverageMaxDoubledPct, "afp.coverage", "max_doubled_pct", U::kPct, 1.0, false,
-     "ply area laid twice or more, outside a band of one tow width along its boundary"},
+    {K::kAfpCoverageMaxBarePct, "afp.coverage", "max_bare_pct", U::kPct, 2.0, false,
+     "area of a ply left bare, beyond the band of one tow width along its boundary, percent"},
+    {K::kAfpCoverageMaxDoubledPct, "afp.coverage", "max_doubled_pct", U::kPct, 5.0, false,
+     "area of a ply covered twice or more, beyond the band along its boundary, percent"},
 };
 static_assert(std::size(kTable) == kLimitKeyCount, "one row per LimitKey");
 
