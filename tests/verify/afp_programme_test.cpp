@@ -121,7 +121,9 @@ TEST(AfpProgramme, TwoHelixCoursesGapOrOverlapInsideTheSecondCourse) {
     EXPECT_EQ(quiet->errors, 0);
     const RuleSummary* steering = RuleOf(report, "afp.steering_radius");
     ASSERT_TRUE(steering && steering->worst_value);
-    EXPECT_GT(*steering->worst_value, 1e5);  // a helix on a cylinder is a geodesic
+    // A helix on a cylinder is a geodesic: what is left is the chords' own error (chords of 5 mm
+    // lines joined to a tow width where the planner cut them short), 2 % of the head's limit.
+    EXPECT_GT(*steering->worst_value, 50 * 635.0);
   }
 }
 

@@ -57,6 +57,30 @@ TEST(AfpSteering, CircularCourseSteersItsInnerAndOuterTowsOnClosedFormRadii) {
   }
 }
 
+// A planner inserts very short moves where it cuts a tow; written with 6 decimals their ends
+// wander by up to 1e-6 mm. Over a 0.01 mm move that is a turn of 1e-4 rad, a "radius" of
+// 100 mm if measured over the move itself: chords are joined to a tow width first.
+TEST(AfpSteering, ShortMovesWithRoundedEndsDoNotReadAsSteering) {
+  const auto scene = AfpScene(geom::MakePlane(4000, 4000));
+  const Eigen::Vector2d x(1, 0);
+  std::vector<trace::LineRecord> lines;
+  double u = 0.0;
+  int n = 10;
+  for (int i = 0; i < 60; ++i) {
+    const double len = i % 3 == 0 ? 5.0 : 0.01;
+    const double wobble_from = (i % 2 == 0 ? 1e-6 : -1e-6), wobble_to = -wobble_from;
+    lines.push_back(LayLine(n++, ToolAt(*scene->surface, Eigen::Vector2d(u, wobble_from), x),
+                            ToolAt(*scene->surface, Eigen::Vector2d(u + len, wobble_to), x)));
+    u += len;
+  }
+  const Report report = RunLines(*scene, lines);
+  const RuleSummary* rule = RuleOf(report, "afp.steering_radius");
+  ASSERT_NE(rule, nullptr);
+  EXPECT_EQ(rule->errors, 0);
+  ASSERT_TRUE(rule->worst_value);
+  EXPECT_GT(*rule->worst_value, 1e4);
+}
+
 TEST(AfpSteering, HelixOnACylinderIsAGeodesicAndDoesNotSteer) {
   const auto scene = AfpScene(geom::MakeCylinder(300, true, 2000, 1800));
   const geom::Surface& s = *scene->surface;

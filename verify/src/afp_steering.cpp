@@ -3,8 +3,11 @@
 // A tow's centre line is followed from line to line of a course; the turning is measured
 // between the chords of consecutive lines (at their shared vertex, a finding of both lines,
 // over the mean of their arcs) and between the two halves of each line (the tow sweeps when
-// the head turns along a line). A curve in space that is a geodesic of the surface (a helix
-// on a cylinder) does not steer: its turning lies along the normal.
+// the head turns along a line). Chords and halves are at least one tow width long: shorter
+// lines (a planner inserts them at tow cuts) are joined into one chord first, or the
+// programme's number rounding (1e-6 mm) over a 0.01 mm move would read as a 100 mm radius. A curve
+// in space that is a geodesic of the surface (a helix on a cylinder) does not steer: its turning
+// lies along the normal.
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -68,7 +71,8 @@ class SteeringRadiusRule final : public Rule {
              "mm"),
         laid_(std::move(laid)),
         chains_(static_cast<std::size_t>(laid_->Layout().tows) + 1),
-        paths_(chains_.size()) {
+        paths_(chains_.size()),
+        baseline_mm_(laid_->Layout().width_mm) {
     const std::optional<double> given = ctx.scene->limits.Get(scene::LimitKey::kAfpSteeringMinMm);
     summary_.error_limit = given ? *given : ctx.scene->head.afp.min_steering_radius_mm;
     for (int t = 1; t <= laid_->Layout().tows; ++t) {
@@ -95,17 +99,33 @@ class SteeringRadiusRule final : public Rule {
         chain.ok = false;
         continue;
       }
+      const double arc = path.arc_first + path.arc_second;
+      const Eigen::Vector3d& last_end = chain.acc ? chain.acc_end : chain.end;
       const bool continues =
-          chain.ok && chain.course == line->course && (chain.end - path.start).norm() < join_tol;
-      if (continues) {
-        // The vertex between the previous line and this one: reported on the previous line.
-        const double r = TurnRadius(chain.end - chain.start, path.end - path.start,
-                                    surface.Normal(path.start_uv),
-                                    0.5 * (chain.arc + path.arc_first + path.arc_second));
-        Consider(r, pending_line_, t);
-        if (r < vertex_radius) vertex_radius = r, vertex_tow = t;
+          chain.ok && chain.course == line->course && (last_end - path.start).norm() < join_tol;
+      if (!continues) {
+        chain = Chain{true, line->course, path.start, path.end, arc};
+      } else if (chain.arc < baseline_mm_) {
+        chain.end = path.end;  // the first chord of the course, not a baseline long yet
+        chain.arc += arc;
+      } else {
+        // The chord after the last one grows over short lines until it is a baseline long.
+        const Eigen::Vector3d from = chain.acc ? chain.acc_start : path.start;
+        const double grown = (chain.acc ? chain.acc_arc : 0.0) + arc;
+        if (grown < baseline_mm_) {
+          chain.acc = true;
+          chain.acc_start = from;
+          chain.acc_end = path.end;
+          chain.acc_arc = grown;
+        } else {
+          // The vertex between the two chords: reported on the line before it and this one.
+          const double r = TurnRadius(chain.end - chain.start, path.end - from,
+                                      surface.Normal(path.start_uv), 0.5 * (chain.arc + grown));
+          Consider(r, pending_line_, t);
+          if (r < vertex_radius) vertex_radius = r, vertex_tow = t;
+          chain = Chain{true, line->course, from, path.end, grown};
+        }
       }
-      chain = Chain{true, line->course, path.start, path.end, path.arc_first + path.arc_second};
     }
     Flush();
     // The vertex belongs to both lines; then the turn inside this line, between its halves.
@@ -115,6 +135,7 @@ class SteeringRadiusRule final : public Rule {
     for (int t = 1; t <= laid_->Layout().tows; ++t) {
       const TowPath& path = paths_[static_cast<std::size_t>(t)];
       if (!path.ok || line->poses.size() < 3) continue;
+      if (path.arc_first < baseline_mm_ || path.arc_second < baseline_mm_) continue;
       Consider(TurnRadius(path.mid - path.start, path.end - path.mid, surface.Normal(path.mid_uv),
                           0.5 * (path.arc_first + path.arc_second)),
                line->source_line, t);
@@ -129,6 +150,10 @@ class SteeringRadiusRule final : public Rule {
     int course = 0;
     Eigen::Vector3d start = Eigen::Vector3d::Zero(), end = Eigen::Vector3d::Zero();
     double arc = 0.0;
+    /// Lines after the chord above, shorter together than a baseline: not measured yet.
+    bool acc = false;
+    Eigen::Vector3d acc_start = Eigen::Vector3d::Zero(), acc_end = Eigen::Vector3d::Zero();
+    double acc_arc = 0.0;
   };
 
   // Counts one measurement of tow `tow` and tracks the smallest radius (the rule's and the
@@ -169,6 +194,7 @@ class SteeringRadiusRule final : public Rule {
   std::shared_ptr<detail::LaidTows> laid_;
   std::vector<Chain> chains_;   ///< per tow (index 1..k): its centre line over the last line
   std::vector<TowPath> paths_;  ///< per tow: over the current line
+  double baseline_mm_;          ///< shortest chord a turn is measured over: one tow width
   int pending_line_ = 0;        ///< the last laying line, whose end vertex is not measured yet
   double pending_radius_ = kInfinity;
   int pending_tow_ = 0;
