@@ -50,6 +50,37 @@ TEST(PlanPly, BundledPanelPliesPlanAndVerifyClean) {
   }
 }
 
+// Done-when 1 on a STEP part: the panel's surface exported with `export-step` (in inches, so
+// the reader converts) and read back through the `step` kind (same (u, v) for a CAD surface,
+// so the plies' boundaries stand); both plies plan and verify clean, and the report lists the
+// gap, overlap and steering figures.
+TEST(PlanPly, PliesOnTheStepPartOfThePanelPlanAndVerifyClean) {
+  const fs::path dir = testing::ScratchDir() / "step_panel";
+  fs::create_directories(dir);
+  const fs::path part = dir / "panel.step";
+  const PlyRun exported = Cli("export-step --scene " + kPanel.string() + " -o " + part.string() +
+                              " --unit inch");
+  ASSERT_EQ(exported.exit_code, 0) << exported.out << exported.err;
+  std::string text = testing::ReadText(kPanel);
+  const std::size_t from = text.find("\nsurface:\n"), to = text.find("\npreform:");
+  ASSERT_TRUE(from != std::string::npos && to != std::string::npos && from < to);
+  text.replace(from + 1, to - from, "surface: {type: step, file: panel.step, face: 0}\n");
+  const fs::path scene = dir / "panel_step.yaml";
+  std::ofstream(scene) << text;
+  for (const std::string ply : {"skin_0", "skin_45"}) {
+    const fs::path nc = dir / (ply + ".nc");
+    const PlyRun plan =
+        Cli("plan ply --scene " + scene.string() + " --ply " + ply + " -o " + nc.string());
+    ASSERT_EQ(plan.exit_code, 0) << plan.out << plan.err;
+    const PlyRun verify = Cli("verify --scene " + scene.string() + " " + nc.string());
+    EXPECT_EQ(verify.exit_code, 0) << verify.out << verify.err;
+    for (const char* rule : {"afp.gap", "afp.overlap", "afp.steering_radius", "afp.coverage",
+                             "afp.compaction", "collision.head_mold", "kin.reach"}) {
+      EXPECT_NE(verify.out.find(rule), std::string::npos) << rule << "\n" << verify.out;
+    }
+  }
+}
+
 TEST(PlanPly, BadPlyIsExit2AtItsLineAndWritesNothing) {
   const std::string text = testing::ReadText(kPanel);
   const std::string key = "    coverage: 50";
