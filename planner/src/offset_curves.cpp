@@ -231,7 +231,9 @@ OffsetFamily OffsetCurves(const geom::Surface& surface, const SurfaceCurve& refe
     OffsetStepReport step;
     for (std::size_t j = 0; j < next.size(); ++j) {
       step.eq2_error_mm.push_back(CircularOffsetError(d, from[j].normal, next[j].normal));
-      step.surface_distance_mm.push_back(SurfaceLength(surface, from[j].uv, next[j].uv));
+      if (options.measure) {
+        step.surface_distance_mm.push_back(SurfaceLength(surface, from[j].uv, next[j].uv));
+      }
     }
     out.curves.push_back(std::move(next));
     out.steps.push_back(std::move(step));

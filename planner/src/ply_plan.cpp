@@ -25,6 +25,9 @@ geom::Domain2 Region(const std::vector<Eigen::Vector2d>& boundary, double margin
 }
 
 constexpr double kExtensionStepMm = 5.0;
+// A course-width offset walks the surface in this many substeps at least (exact on a circle;
+// the 0.5 mm default step made a 7 m wing course cost seconds).
+constexpr double kOffsetSubsteps = 20.0;
 
 /// The geodesic through the origin's foot point along `d`, both ways until it leaves `region`
 /// (steps of kExtensionStepMm, the walk of geom::WalkOnSurface).
@@ -67,6 +70,8 @@ std::optional<SurfaceCurve> OffsetOnce(const geom::Surface& surface, const Surfa
   OffsetOptions o;
   o.distance_mm = distance;
   o.count = 1;
+  o.measure = false;
+  o.max_substep_mm = std::max(o.max_substep_mm, distance / kOffsetSubsteps);
   o.method =
       method == scene::PlyOffsetMethod::kPaper ? OffsetMethod::kPaper : OffsetMethod::kCorrected;
   const SurfaceCurve base = side > 0 ? curve : Reversed(curve);

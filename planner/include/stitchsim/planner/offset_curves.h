@@ -53,12 +53,15 @@ struct OffsetOptions {
   int count = 1;             ///< offsets n
   OffsetMethod method = OffsetMethod::kPaper;
   double max_substep_mm = 0.5;  ///< corrected method: longest walking substep
+  /// Measure every step's distance on the surface (OffsetStepReport::surface_distance_mm; the
+  /// eq. 3 integral is most of an offset's cost); a planner that only needs the curves says no.
+  bool measure = true;
 };
 
 /// What one offset step did, per defining point (index j of the curve).
 struct OffsetStepReport {
   std::vector<double> eq2_error_mm;         ///< d (1 - psi / tan psi), psi between N_i and N_i+1
-  std::vector<double> surface_distance_mm;  ///< from curve i to curve i+1, measured on the surface
+  std::vector<double> surface_distance_mm;  ///< curve i to i+1 on the surface (empty: !measure)
 };
 
 struct OffsetFamily {
