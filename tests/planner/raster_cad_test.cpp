@@ -318,14 +318,15 @@ TEST(RasterOnCadSurface, FootprintOnACylinderInItsUv) {
   away.pose_mm.translation().y() += 10000.0;
   EXPECT_FALSE(scene::ConstraintFootprintOn(away, *s->surface, 5.0, error).has_value());
   EXPECT_FALSE(error.empty());
-  // The planner reports it at the constraint's line.
+  // The planner reports it at the constraint's line (`c` refers into the vector pushed to).
+  const int line = c.where.line;
   s->constraints.push_back(away);
   DiagnosticSink sink;
   EXPECT_FALSE(PlanRaster(*s, CylinderOptions(), sink).has_value());
   ASSERT_FALSE(sink.Diagnostics().empty());
   EXPECT_EQ(sink.Diagnostics().front().code, "plan-raster-footprint");
-  EXPECT_EQ(sink.Diagnostics().front().location.line, c.where.line);
-  EXPECT_GT(c.where.line, 0);
+  EXPECT_EQ(sink.Diagnostics().front().location.line, line);
+  EXPECT_GT(line, 0);
   const auto wing = Load("wing_cover.yaml");
   ASSERT_TRUE(wing);
   for (const scene::Constraint& w : wing->constraints) {
