@@ -248,12 +248,19 @@ class PlyBuilder {
   /// are offset, with a growing margin. nullopt: nothing left.
   std::optional<SurfaceCurve> Offset(const SurfaceCurve& curve, double distance, int side,
                                      const geom::Domain2& region) const {
-    const SurfaceCurve base = Extended(surface_, curve, 2.0 * distance, kExtensionStepMm);
-    auto next = OffsetOnce(surface_, base, distance, side, ply_.method);
-    for (int attempt = 1; !next && attempt <= 4; ++attempt) {
-      const SurfaceCurve kept = KeepOffsetOnSurface(surface_, base, distance, side, 5.0 * attempt);
-      if (kept.size() < 2) break;
-      next = OffsetOnce(surface_, kept, distance, side, ply_.method);
+    // Extended by two course widths, or less where the extension's offset would leave the
+    // surface (near a sharp trailing edge the walk can lose the skin it is on).
+    std::optional<SurfaceCurve> next;
+    for (const double extension : {2.0, 1.0, 0.5, 0.0}) {
+      const SurfaceCurve base = Extended(surface_, curve, extension * distance, kExtensionStepMm);
+      next = OffsetOnce(surface_, base, distance, side, ply_.method);
+      for (int attempt = 1; !next && attempt <= 4; ++attempt) {
+        const SurfaceCurve kept =
+            KeepOffsetOnSurface(surface_, base, distance, side, 5.0 * attempt);
+        if (kept.size() < 2) break;
+        next = OffsetOnce(surface_, kept, distance, side, ply_.method);
+      }
+      if (next) break;
     }
     if (!next) return std::nullopt;
     SurfaceCurve trimmed = Trim(*next, region);
