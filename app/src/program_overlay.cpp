@@ -3,6 +3,7 @@
 #include <fstream>
 
 #include "commands.h"
+#include "stitchsim/common/thinned.h"
 #include "stitchsim/program/modal_state.h"
 #include "stitchsim/program/reader.h"
 #include "stitchsim/program/tool_pose.h"
@@ -32,7 +33,7 @@ std::optional<ProgramOverlay> ProgramStitchOverlay(const LoadedScene& /*ls*/,
   program::ModalState state(dialect, program_file, sink);
   program::Block block;
   ProgramOverlay out;
-  std::size_t stride = 1, seen = 0;
+  Thinned<Eigen::Vector3d> points(kMaxOverlayPoints);
   while (reader.Next(block)) {
     const program::Step& step = state.Update(block);
     if (!step.is_move) continue;
@@ -45,18 +46,9 @@ std::optional<ProgramOverlay> ProgramStitchOverlay(const LoadedScene& /*ls*/,
     if (!out.first_tool_in_part_mm) out.first_tool_in_part_mm = program::ToolPoseOf(s, order);
     const auto& u_now = s[program::Axis::kDrive];
     const auto& u_before = state.Previous()[program::Axis::kDrive];
-    auto& points = out.stitch_points_part_mm;
-    if (points.empty() || (u_now && (!u_before || *u_now != *u_before))) {
-      if (seen++ % stride != 0) continue;
-      if (points.size() == kMaxOverlayPoints) {
-        for (std::size_t i = 0; 2 * i < points.size(); ++i) points[i] = points[2 * i];
-        points.resize((points.size() + 1) / 2);
-        stride *= 2;
-        if ((seen - 1) % stride != 0) continue;
-      }
-      points.push_back(p);
-    }
+    if (points.Items().empty() || (u_now && (!u_before || *u_now != *u_before))) points.Add(p);
   }
+  out.stitch_points_part_mm = std::move(points.Items());
   if (PrintDiagnostics(sink)) return std::nullopt;
   if (out.stitch_points_part_mm.empty()) {
     PrintError("program-empty", program_file + ": the programme has no moves to draw");

@@ -65,17 +65,6 @@ const LaidLine* LaidTows::Sample(const trace::LineRecord& line) {
   return &cached_;
 }
 
-void ThinnedPoints::Add(const Eigen::Vector3d& p) {
-  if (seen_++ % stride_ != 0) return;
-  if (points_.size() == kMaxDrawnPoints) {
-    for (std::size_t i = 0; 2 * i < points_.size(); ++i) points_[i] = points_[2 * i];
-    points_.resize((points_.size() + 1) / 2);
-    stride_ *= 2;
-    if ((seen_ - 1) % stride_ != 0) return;
-  }
-  points_.push_back(p);
-}
-
 std::shared_ptr<LaidTows> MakeLaidTows(const RuleContext& ctx) {
   return std::make_shared<LaidTows>(*ctx.scene->surface, process::TowLayoutOf(ctx.scene->head));
 }

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "stitchsim/common/thinned.h"
 #include "stitchsim/process/afp_tows.h"
 #include "stitchsim/trace/trace.h"
 #include "stitchsim/verify/rule.h"
@@ -72,12 +73,11 @@ class LaidTows {
 class ThinnedPoints {
  public:
   static constexpr std::size_t kMaxDrawnPoints = 1000;
-  void Add(const Eigen::Vector3d& p);
-  DrawnPoints Drawn(std::string label) const { return {std::move(label), points_}; }
+  void Add(const Eigen::Vector3d& p) { points_.Add(p); }
+  DrawnPoints Drawn(std::string label) const { return {std::move(label), points_.Items()}; }
 
  private:
-  std::vector<Eigen::Vector3d> points_;
-  std::size_t stride_ = 1, seen_ = 0;
+  Thinned<Eigen::Vector3d> points_{kMaxDrawnPoints};
 };
 
 /// The sampler every afp.* rule of one verifier shares.
