@@ -83,18 +83,26 @@ class OcctSurface final : public Surface {
   }
 
   Eigen::Matrix<double, 3, 2> Jacobian(const Eigen::Vector2d& uv) const override {
+    Eigen::Vector3d p;
     Eigen::Matrix<double, 3, 2> j;
+    PointAndJacobian(uv, p, j);
+    return j;
+  }
+
+  void PointAndJacobian(const Eigen::Vector2d& uv, Eigen::Vector3d& point,
+                        Eigen::Matrix<double, 3, 2>& j) const override {
     try {
       const Eigen::Vector2d s = Param(uv);
       gp_Pnt p;
       gp_Vec du, dv;
       s_->D1(s.x(), s.y(), p, du, dv);
+      point = ToEigen(p.XYZ());
       j.col(0) = ToEigen(du.XYZ()) * scale_.x();
       j.col(1) = ToEigen(dv.XYZ()) * scale_.y();
     } catch (const Standard_Failure&) {
+      point.setConstant(std::numeric_limits<double>::quiet_NaN());
       j.setConstant(std::numeric_limits<double>::quiet_NaN());
     }
-    return j;
   }
 
   SurfaceProjection Project(const Eigen::Vector3d& p) const override {

@@ -9,9 +9,10 @@ namespace stitchsim::geom {
 SurfaceFoot ProjectNear(const Surface& s, const Eigen::Vector3d& p, Eigen::Vector2d uv) {
   SurfaceFoot out;
   for (int iter = 0; iter < 200; ++iter) {
-    const Eigen::Matrix<double, 3, 2> j = s.Jacobian(uv);
-    const Eigen::Vector2d step =
-        (j.transpose() * j).ldlt().solve(j.transpose() * (p - s.Point(uv)));
+    Eigen::Vector3d at;
+    Eigen::Matrix<double, 3, 2> j;
+    s.PointAndJacobian(uv, at, j);
+    const Eigen::Vector2d step = (j.transpose() * j).ldlt().solve(j.transpose() * (p - at));
     if (!step.allFinite()) return out;
     uv += step;
     if (step.norm() < 1e-13 * (1.0 + uv.norm())) {

@@ -52,6 +52,13 @@ class Surface {
   virtual Eigen::Vector3d Normal(const Eigen::Vector2d& uv) const = 0;
   /// d Point / d(u, v) (columns: du, dv).
   virtual Eigen::Matrix<double, 3, 2> Jacobian(const Eigen::Vector2d& uv) const;
+  /// Point and Jacobian at once (a kernel surface evaluates both in one call; the local
+  /// projections of surface_walk.h need both at every iteration).
+  virtual void PointAndJacobian(const Eigen::Vector2d& uv, Eigen::Vector3d& point,
+                                Eigen::Matrix<double, 3, 2>& jacobian) const {
+    point = Point(uv);
+    jacobian = Jacobian(uv);
+  }
   /// Closest point on the surface to `p` (part frame, mm).
   virtual SurfaceProjection Project(const Eigen::Vector3d& p) const;
   /// Where the line p + t*dir crosses the surface nearest to p; false if it does not.
