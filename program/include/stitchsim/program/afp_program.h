@@ -64,11 +64,12 @@ struct AfpCourse {
 };
 
 struct AfpPly {
-  int number = 0;        ///< P of its M70
-  int line = 0;          ///< the M70 line
-  std::string comment;   ///< the M70 line's comment (e.g. "PLY name=skin_0 angle=0")
-  int first_course = 0;  ///< index into AfpProgram::courses
-  int course_count = 0;
+  int number = 0;       ///< P of its M70
+  int line = 0;         ///< its first M70 line
+  std::string comment;  ///< that line's comment (e.g. "PLY name=skin_0 angle=0")
+  /// Its courses (indices into AfpProgram::courses), programme order. A sequenced programme
+  /// may enter a ply several times (plies of one precedence set interleave): one AfpPly each.
+  std::vector<int> courses;
 };
 
 struct AfpProgram {
@@ -94,9 +95,8 @@ struct AfpProgram {
 /// parentheses: every reader and modal-state diagnostic; no M71 in the programme
 /// (`sequence-no-courses`); a course that adds no tow on a feed move with the head lowered
 /// (`sequence-empty-course`); tows still laying at M72 (`sequence-open-tows`); a course before
-/// any M70, a ply whose courses are not contiguous (M70 P1 .. M70 P2 .. M70 P1), or a course
-/// number repeated within its ply (`sequence-marks-order`); a move with unknown axes in a
-/// lay-up (`sequence-incomplete-pose`). nullopt when any error was reported.
+/// any M70, a course number repeated within its ply, or M70 P0 (`sequence-marks-order`); a move
+/// with unknown axes in a lay-up (`sequence-incomplete-pose`). nullopt when any error was reported.
 std::optional<AfpProgram> ReadAfpProgram(std::istream& in, const Dialect& dialect,
                                          std::string file_name, DiagnosticSink& sink);
 
