@@ -68,7 +68,7 @@ struct AfpPly {
   int line = 0;         ///< its first M70 line
   std::string comment;  ///< that line's comment (e.g. "PLY name=skin_0 angle=0")
   /// Its courses (indices into AfpProgram::courses), programme order. A sequenced programme
-  /// may enter a ply several times (plies of one precedence set interleave): one AfpPly each.
+  /// may enter a ply several times (plies of one precedence set interleave): still one AfpPly.
   std::vector<int> courses;
 };
 
