@@ -173,6 +173,31 @@ void ReadAfp(detail::YamlReader& r, const YAML::Node& root, HeadSpec& h) {
   }
 }
 
+// sequence: off-part sequencing parameters (optional; docs/sequence.md).
+void ReadSequence(detail::YamlReader& r, const YAML::Node& root, HeadSpec& h) {
+  auto sq = r.Child(root, "sequence", false);
+  if (!sq || !r.ExpectMap(*sq, "sequence")) return;
+  r.CheckKeys(*sq, {"retract_mm", "clearance_mm", "min_overlap_mm2", "axis_weights"}, "sequence");
+  auto num = [&](std::string_view key, double& out) {
+    if (r.Child(*sq, key, false)) ReadPositive(r, *sq, key, out);
+  };
+  num("retract_mm", h.sequence.retract_mm);
+  num("clearance_mm", h.sequence.clearance_mm);
+  num("min_overlap_mm2", h.sequence.min_overlap_mm2);
+  auto w = r.Child(*sq, "axis_weights", false);
+  if (!w || !r.ExpectMap(*w, "sequence.axis_weights")) return;
+  for (const auto& kv : *w) {
+    SequenceSpec::AxisWeight a;
+    a.joint = kv.first.as<std::string>();
+    a.where = r.At(kv.first);
+    if (auto v = r.Number(kv.second, "axis weight");
+        v && r.Positive(kv.second, *v, "axis weight", true)) {
+      a.weight = *v;
+      h.sequence.axis_weights.push_back(a);
+    }
+  }
+}
+
 void ReadEnvelope(detail::YamlReader& r, const YAML::Node& root, HeadSpec& h) {
   if (auto env = r.Child(root, "envelope", false); env && r.ExpectMap(*env, "envelope")) {
     r.CheckKeys(*env, {"height_mm", "radius_mm"}, "envelope");
@@ -265,7 +290,7 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
   if (!r.ExpectMap(*root, "a head spec")) return std::nullopt;
   r.CheckKeys(*root,
               {"stitchsim_head", "name", "description", "kind", "tool_number", "mjcf", "tool_frame",
-               "needles", "stitch", "afp", "envelope", "limits", "allowed_contacts"},
+               "needles", "stitch", "afp", "sequence", "envelope", "limits", "allowed_contacts"},
               "head spec");
   HeadSpec h;
   h.file = file;
@@ -274,6 +299,7 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
   ReadNeedles(r, *root, h);
   ReadStitchProcess(r, *root, h);
   ReadAfp(r, *root, h);
+  ReadSequence(r, *root, h);
   ReadEnvelope(r, *root, h);
   ReadAllowedContacts(r, *root, h);
   if (auto lim = r.Child(*root, "limits", false)) detail::ReadLimitMap(r, *lim, h.limits);

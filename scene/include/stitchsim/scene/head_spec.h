@@ -45,6 +45,21 @@ struct AfpSpec {
   double rapid_speed_mm_s = 500.0;
 };
 
+/// Off-part sequencing of AFP programmes (the head's `sequence:` block; docs/sequence.md).
+struct SequenceSpec {
+  double retract_mm = 100.0;     ///< retract along the head axis after a lay-up / approach before
+  double clearance_mm = 100.0;   ///< travel keeps the tool point this far from the part surface
+  double min_overlap_mm2 = 1.0;  ///< courses sharing more surface than this overlap (precedence)
+  /// Weight of each machine axis in the seed's eq. 3.4 cost, per mm (prismatic) or per degree
+  /// (revolute), by URDF joint name; a joint not listed weighs 0. The CLI checks the names.
+  struct AxisWeight {
+    std::string joint;
+    double weight = 0.0;
+    SourceLocation where;
+  };
+  std::vector<AxisWeight> axis_weights;
+};
+
 /// The head near the work, for planners' keep-out margins: every part of the head lower than
 /// `height_mm` above the tool point (along tool z) lies within `radius_mm` of the tool z axis.
 /// A test checks it against the head's MJCF geometry.
@@ -77,6 +92,7 @@ struct HeadSpec {
   std::vector<NeedleSpec> needles;
   StitchProcessSpec stitch;
   AfpSpec afp;
+  SequenceSpec sequence;                         ///< defaults when the spec has no `sequence:`
   std::optional<HeadEnvelope> envelope;          ///< absent: the head spec gives none
   RuleLimits limits;                             ///< the spec's `limits`, over the table's defaults
   std::vector<AllowedContact> allowed_contacts;  ///< absent: none (every contact counts)

@@ -1,0 +1,46 @@
+#pragma once
+// The off-part moves `stitchsim sequence` writes between lay-ups (docs/sequence.md): retract
+// along the head axis, travel that keeps the tool point clear of the part, approach along
+// the next course's head axis and lower onto its start. Part frame, mm.
+#include <Eigen/Geometry>
+#include <optional>
+#include <vector>
+
+#include "stitchsim/geom/surface.h"
+#include "stitchsim/program/afp_program.h"
+
+namespace stitchsim::planner {
+
+struct OffPartOptions {
+  double retract_mm = 100.0;    ///< along the tool z after a lay-up and before the next
+  double clearance_mm = 100.0;  ///< travel keeps the tool point at least this far off the surface
+  double sample_mm = 10.0;      ///< travel checked at most this far apart
+  int max_refinements = 10;     ///< via points inserted per travel at most (depth of bisection)
+};
+
+/// Where the head is between lay-ups: a lay-up's end or start (on the surface), or a free pose
+/// (home).
+struct OffPartEnd {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  bool on_surface = true;  ///< a lay-up end: retract from / approach to it
+};
+
+/// The off-part blocks from `from` to `to` (either may be absent: nothing before / after).
+/// From a lay-up end: M20 and a rapid `retract_mm` up its tool z. Then rapids to above `to`
+/// (its start raised `retract_mm` along its tool z) through via points lifted to
+/// `clearance_mm` off the surface wherever the straight line would come closer, orientation
+/// turning with the distance travelled. To a lay-up start: lower the head (M21) and feed down
+/// onto it at `feed_mm_per_min` (the lay-up's own feed, so its first line means what it meant).
+std::vector<program::OffPartBlock> OffPartPath(const geom::Surface& surface,
+                                               const std::optional<OffPartEnd>& from,
+                                               const std::optional<OffPartEnd>& to,
+                                               std::optional<double> feed_mm_per_min,
+                                               const OffPartOptions& options);
+
+/// Tool-point path length of `blocks` starting from `from` (mm): the as-flown off-part motion.
+double OffPartLength(const Eigen::Vector3d& from, const std::vector<program::OffPartBlock>& blocks);
+
+/// Height of `p` above the surface along the normal at its foot point (negative beneath).
+double HeightAboveSurface(const geom::Surface& surface, const Eigen::Vector3d& p);
+
+}  // namespace stitchsim::planner
