@@ -9,13 +9,24 @@ namespace stitchsim::planner::detail {
 
 Tour::Tour(const SequenceProblem& p, std::vector<Visit> order) : p_(p), t_(std::move(order)) {
   pos_.assign(static_cast<std::size_t>(p.courses), -1);
+  const int m = 2 * p.courses;
+  for (int u = 0; u < m; ++u) {
+    from_start_.push_back(FromStart(p, NodeVisit(u)));
+    to_finish_.push_back(ToFinish(p, NodeVisit(u)));
+  }
+  if (p.courses <= kTableCourses) {
+    table_.resize(static_cast<std::size_t>(m) * static_cast<std::size_t>(m));
+    for (int a = 0; a < m; ++a) {
+      for (int b = 0; b < m; ++b) table_[a * m + b] = Edge(p, NodeVisit(a), NodeVisit(b));
+    }
+  }
   Refresh();
   cost_ = PathCost(p_, t_);
 }
 
 double Tour::Link(int x, int y) const {
   if (y >= Size()) {
-    if (x >= 0) return ToFinish(p_, t_[x]);
+    if (x >= 0) return F(t_[x]);
     return p_.finish ? MoveCost(p_, p_.start.data(), p_.finish->data()) : 0.0;
   }
   return In(x, t_[y]);
@@ -68,18 +79,18 @@ double Tour::BestDirections(std::vector<Visit>& out) const {
   // best[x][r]: cheapest way to have laid positions 0..x with position x in direction r.
   std::vector<std::array<double, 2>> best(static_cast<std::size_t>(n));
   std::vector<std::array<std::uint8_t, 2>> from(static_cast<std::size_t>(n), {0, 0});
-  for (int r = 0; r < 2; ++r) best[0][r] = FromStart(p_, {t_[0].course, r == 1});
+  for (int r = 0; r < 2; ++r) best[0][r] = S({t_[0].course, r == 1});
   for (int x = 1; x < n; ++x) {
     for (int r = 0; r < 2; ++r) {
       const Visit v{t_[x].course, r == 1};
-      const double via0 = best[x - 1][0] + Edge(p_, {t_[x - 1].course, false}, v);
-      const double via1 = best[x - 1][1] + Edge(p_, {t_[x - 1].course, true}, v);
+      const double via0 = best[x - 1][0] + E({t_[x - 1].course, false}, v);
+      const double via1 = best[x - 1][1] + E({t_[x - 1].course, true}, v);
       best[x][r] = via1 < via0 ? via1 : via0;
       from[x][r] = via1 < via0 ? 1 : 0;
     }
   }
-  const double end0 = best[n - 1][0] + ToFinish(p_, {t_[n - 1].course, false});
-  const double end1 = best[n - 1][1] + ToFinish(p_, {t_[n - 1].course, true});
+  const double end0 = best[n - 1][0] + F({t_[n - 1].course, false});
+  const double end1 = best[n - 1][1] + F({t_[n - 1].course, true});
   int r = end1 < end0 ? 1 : 0;
   for (int x = n - 1; x >= 0; --x) {
     out[x].reversed = r == 1;
@@ -101,8 +112,8 @@ void Tour::Refresh() {
   for (int x = 0; x < n; ++x) {
     pos_[t_[x].course] = x;
     if (x == 0) continue;
-    fwd_[x] = fwd_[x - 1] + Edge(p_, t_[x - 1], t_[x]);
-    if (p_.bidirectional) rev_[x] = rev_[x - 1] + Edge(p_, Flip(t_[x]), Flip(t_[x - 1]));
+    fwd_[x] = fwd_[x - 1] + E(t_[x - 1], t_[x]);
+    if (p_.bidirectional) rev_[x] = rev_[x - 1] + E(Flip(t_[x]), Flip(t_[x - 1]));
   }
 }
 

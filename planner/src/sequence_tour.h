@@ -20,6 +20,10 @@ struct TourMove {
   double delta = 0.0;
 };
 
+/// Up to this many courses the tour keeps every move cost in a table: (2n)^2 doubles, at most
+/// 32 MiB; above, costs are computed when needed.
+inline constexpr int kTableCourses = 1024;
+
 class Tour {
  public:
   Tour(const SequenceProblem& p, std::vector<Visit> order);
@@ -44,10 +48,16 @@ class Tour {
   void Restore(const std::vector<Visit>& order, double cost);
 
  private:
+  /// Move costs, from the table when there is one.
+  double E(Visit a, Visit b) const {
+    return table_.empty() ? Edge(p_, a, b) : table_[VisitNode(a) * 2 * t_.size() + VisitNode(b)];
+  }
+  double S(Visit v) const { return from_start_[VisitNode(v)]; }
+  double F(Visit v) const { return to_finish_[VisitNode(v)]; }
   /// Cost from the end of position x (x = -1: p.start) to the start of v.
-  double In(int x, Visit v) const { return x < 0 ? FromStart(p_, v) : Edge(p_, t_[x], v); }
+  double In(int x, Visit v) const { return x < 0 ? S(v) : E(t_[x], v); }
   /// Cost from the end of v to the start of position y (y = n: p.finish, or nothing).
-  double Out(Visit v, int y) const { return y >= Size() ? ToFinish(p_, v) : Edge(p_, v, t_[y]); }
+  double Out(Visit v, int y) const { return y >= Size() ? F(v) : E(v, t_[y]); }
   /// The current link between positions x and y = x + 1 (or a stretch's ends after removal).
   double Link(int x, int y) const;
   void Refresh();
@@ -58,6 +68,8 @@ class Tour {
   std::vector<double> fwd_;  ///< fwd_[i]: moves t0 -> t1 -> ... -> ti
   std::vector<double> rev_;  ///< rev_[i]: moves flip(ti) -> ... -> flip(t0)
   std::vector<Visit> scratch_;
+  std::vector<double> table_;  ///< (2n)^2 move costs between nodes, if n <= kTableCourses
+  std::vector<double> from_start_, to_finish_;  ///< per node
   double cost_ = 0.0;
 };
 
