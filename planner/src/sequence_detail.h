@@ -1,6 +1,6 @@
 #pragma once
 // Private helpers shared by the sequence solvers (sequence_*.cpp): where a visit starts and
-// ends, the cost of one move between two visits, and the nearest-course lists.
+// ends, the cost of one move between two visits.
 #include <cassert>
 #include <chrono>
 #include <vector>
@@ -46,10 +46,6 @@ inline void AssertWellFormed(const SequenceProblem& p) {
   assert(!p.finish || p.finish->size() == static_cast<std::size_t>(p.dim));
   (void)p;
 }
-
-/// For every course, the (at most) k other courses with the cheapest move between the two in
-/// either order and any allowed directions; ties by course index.
-std::vector<std::vector<int>> NearestCourses(const SequenceProblem& p, int k);
 
 /// Seconds since t0 on the steady clock.
 inline double SecondsSince(std::chrono::steady_clock::time_point t0) {

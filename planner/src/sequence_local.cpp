@@ -14,9 +14,11 @@
 // - Segment insertion (both modes): a stretch of any length moved elsewhere unchanged (the
 //   3-opt "or-3opt" move). It replaces 2-opt when NOT bidirectional, where a stretch cannot be
 //   laid backwards.
-// Candidates come from k-nearest lists (options.neighbours courses, by the cheapest move
-// between two courses in any allowed directions): a move is tried only if one of its new
-// links joins a course to one of its listed neighbours (plus moves to the very start and end).
+// Candidates come from k-nearest lists per visit (a course in one direction): the
+// options.neighbours visits of other courses with the cheapest move into it, and out of it
+// (O(n^2) moves to build, once). A move is tried only if one of its new links is from such a
+// list and joins visits as the tour lays them now (plus moves to the very start and end).
+//
 // Descent. A FIFO queue of courses (initially in tour order); for the course popped, every
 // candidate move around it is priced and the best improving one (ties: first found) applied;
 // the courses at the changed links are queued again. It ends when the queue is empty.
@@ -26,7 +28,7 @@
 // if that saves anything the changed courses are queued and the descent resumes.
 //
 // Perturbation. Then, for at most options.max_rounds rounds: 1..3 kicks (each a random
-// stretch of 1..S courses, S = min(50, n / 2), moved to a random place at most 2 S positions
+// stretch of 1..S courses, S = min(10, n / 2), moved to a random place at most 2 S positions
 // away, flipped with probability 1/2 when bidirectional: a segment kick that contains the
 // double-bridge of two adjacent stretches; draws from std::mt19937_64 with a fixed seed), a
 // descent from the kicks' courses; the result replaces the current tour unless it is worse
@@ -40,6 +42,7 @@
 // found so far; it is still a descent's local optimum and never worse than the first one, but
 // how many kicks it saw depends on the machine's speed (SequenceSolution::iterations reports
 // the moves applied plus the rounds run).
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -60,7 +63,7 @@ using Kind = TourMove::Kind;
 
 constexpr std::uint64_t kKickSeed = 0x5eed004;
 constexpr int kMaxChain = 3;
-constexpr int kMaxKickStretch = 50;
+constexpr int kMaxKickStretch = 10;
 constexpr std::uint64_t kMaxKicks = 3;
 
 std::vector<Visit> NearestNeighbourTour(const SequenceProblem& p) {
@@ -88,14 +91,47 @@ std::vector<Visit> NearestNeighbourTour(const SequenceProblem& p) {
   return order;
 }
 
+/// For every visit node (2 course + reversed), the k nodes of other courses with the cheapest
+/// move into it (in) and out of it (out), ties by node; forward nodes only if unidirectional.
+struct NodeLists {
+  std::vector<std::vector<int>> in, out;
+};
+
+NodeLists BuildNodeLists(const Tour& tour, const SequenceProblem& p, int k) {
+  const int m = 2 * p.courses;
+  const int step = p.bidirectional ? 1 : 2;
+  NodeLists lists;
+  lists.in.resize(static_cast<std::size_t>(m));
+  lists.out.resize(static_cast<std::size_t>(m));
+  std::vector<std::pair<double, int>> into, from;
+  for (int a = 0; a < m; a += step) {
+    into.clear();
+    from.clear();
+    const Visit va = detail::NodeVisit(a);
+    for (int b = 0; b < m; b += step) {
+      if (a / 2 == b / 2) continue;
+      const Visit vb = detail::NodeVisit(b);
+      into.push_back({tour.Move(vb, va), b});
+      from.push_back({tour.Move(va, vb), b});
+    }
+    const std::size_t kk =
+        std::min<std::size_t>(static_cast<std::size_t>(std::max(0, k)), into.size());
+    for (auto* row : {&into, &from}) {
+      std::partial_sort(row->begin(), row->begin() + static_cast<std::ptrdiff_t>(kk), row->end());
+      auto& list = row == &into ? lists.in[a] : lists.out[a];
+      for (std::size_t i = 0; i < kk; ++i) list.push_back((*row)[i].second);
+    }
+  }
+  return lists;
+}
+
 /// The descent: candidate moves around queued courses, best improving one applied.
 class Descent {
  public:
-  Descent(const SequenceProblem& p, Tour& tour, const std::vector<std::vector<int>>& near,
-          double eps)
+  Descent(const SequenceProblem& p, Tour& tour, const NodeLists& lists, double eps)
       : p_(p),
         tour_(tour),
-        near_(near),
+        lists_(lists),
         eps_(eps),
         queued_(static_cast<std::size_t>(p.courses), 0) {}
 
@@ -146,6 +182,11 @@ class Descent {
     }
     return applied;
   }
+  /// Position of v's course if it is laid as v now, else -1.
+  int Where(Visit v) const {
+    const int x = tour_.PositionOf(v.course);
+    return tour_.At(x).reversed == v.reversed ? x : -1;
+  }
   void Offer(Kind kind, int i, int k, int g, bool flip, double delta) {
     if (delta < best_.delta) best_ = TourMove{kind, i, k, g, flip, delta};
   }
@@ -165,7 +206,7 @@ class Descent {
 
   const SequenceProblem& p_;
   Tour& tour_;
-  const std::vector<std::vector<int>>& near_;
+  const NodeLists& lists_;
   double eps_;
   std::deque<int> queue_;
   std::vector<char> queued_;
@@ -174,17 +215,22 @@ class Descent {
 
 void Descent::TryAround(int x) {
   const int n = tour_.Size();
-  const int c = tour_.At(x).course;
+  const Visit c = tour_.At(x);
   if (p_.bidirectional) {
     TryReverse(x, x);
     TryReverse(0, x);
     TryReverse(x, n - 1);
-    for (int d : near_[c]) {
-      const int q = tour_.PositionOf(d);
-      TryReverse(x + 1, q);  // new link c -> flip(d)
-      TryReverse(q, x - 1);  // new link flip(d) -> c
-      TryReverse(x, q - 1);  // new link flip(c) -> d
-      TryReverse(q + 1, x);  // new link d -> flip(c)
+    for (int v : lists_.out[detail::VisitNode(c)]) {
+      TryReverse(x + 1, Where(detail::Flip(detail::NodeVisit(v))));  // c -> flipped stretch
+    }
+    for (int u : lists_.in[detail::VisitNode(c)]) {
+      TryReverse(Where(detail::Flip(detail::NodeVisit(u))), x - 1);  // flipped stretch -> c
+    }
+    for (int v : lists_.out[detail::VisitNode(detail::Flip(c))]) {
+      TryReverse(x, Where(detail::NodeVisit(v)) - 1);  // stretch from c, flipped -> v
+    }
+    for (int u : lists_.in[detail::VisitNode(detail::Flip(c))]) {
+      TryReverse(Where(detail::NodeVisit(u)) + 1, x);  // u -> stretch to c, flipped
     }
   }
   for (int len = 1; len <= kMaxChain; ++len) {
@@ -197,32 +243,41 @@ void Descent::TryAround(int x) {
 void Descent::TryOrOpt(int i, int k) {
   const int n = tour_.Size();
   if (i < 0 || k >= n) return;
-  for (int flip = 0; flip < 2; ++flip) {
-    TryChain(i, k, -1, flip == 1);
-    TryChain(i, k, n - 1, flip == 1);
-    for (int end : {i, k}) {
-      for (int d : near_[tour_.At(end).course]) {
-        const int q = tour_.PositionOf(d);
-        TryChain(i, k, q, flip == 1);
-        TryChain(i, k, q - 1, flip == 1);
-      }
+  for (int f = 0; f < (p_.bidirectional ? 2 : 1); ++f) {
+    const bool flip = f == 1;
+    TryChain(i, k, -1, flip);
+    TryChain(i, k, n - 1, flip);
+    const Visit first = flip ? detail::Flip(tour_.At(k)) : tour_.At(i);
+    const Visit last = flip ? detail::Flip(tour_.At(i)) : tour_.At(k);
+    for (int u : lists_.in[detail::VisitNode(first)]) {
+      const int g = Where(detail::NodeVisit(u));
+      if (g >= 0) TryChain(i, k, g, flip);
+    }
+    for (int v : lists_.out[detail::VisitNode(last)]) {
+      const int h = Where(detail::NodeVisit(v));
+      if (h >= 0) TryChain(i, k, h - 1, flip);
     }
   }
 }
 
 // Stretches of any length moved unchanged: new links t[g] -> t[i] and t[k] -> t[g+1] both
-// between listed neighbours, with the course at x as the stretch's first or last.
+// from the lists, with the course at x as the stretch's first or last.
 void Descent::TrySegments(int x) {
   const int n = tour_.Size();
-  const int c = tour_.At(x).course;
-  for (int d : near_[c]) {
-    const int g = tour_.PositionOf(d);  // stretch starts at x, goes after g
-    if (g + 1 < n) {
-      for (int e : near_[tour_.At(g + 1).course]) TryChain(x, tour_.PositionOf(e), g, false);
+  const int c = detail::VisitNode(tour_.At(x));
+  for (int u : lists_.in[c]) {  // stretch starts at x, goes after g
+    const int g = Where(detail::NodeVisit(u));
+    if (g < 0 || g + 1 >= n) continue;
+    for (int w : lists_.in[detail::VisitNode(tour_.At(g + 1))]) {
+      TryChain(x, Where(detail::NodeVisit(w)), g, false);
     }
-    const int h = tour_.PositionOf(d) - 1;  // stretch ends at x, goes after h
-    if (h >= 0) {
-      for (int e : near_[tour_.At(h).course]) TryChain(tour_.PositionOf(e), x, h, false);
+  }
+  for (int v : lists_.out[c]) {  // stretch ends at x, goes after h
+    const int h = Where(detail::NodeVisit(v)) - 1;
+    if (h < 0) continue;
+    for (int w : lists_.out[detail::VisitNode(tour_.At(h))]) {
+      const int i = Where(detail::NodeVisit(w));
+      if (i >= 0) TryChain(i, x, h, false);
     }
   }
 }
@@ -265,8 +320,8 @@ SequenceSolution SolveLocalSearch(const SequenceProblem& p, const LocalSearchOpt
   const int n = p.courses;
   Tour tour(p, NearestNeighbourTour(p));
   const double eps = 1e-12 * (1.0 + tour.Cost());
-  const auto near = detail::NearestCourses(p, o.neighbours);
-  Descent descent(p, tour, near, eps);
+  const NodeLists lists = BuildNodeLists(tour, p, o.neighbours);
+  Descent descent(p, tour, lists, eps);
   for (const Visit& v : tour.Order()) descent.Push(v.course);
   s.iterations += descent.Run();
   std::mt19937_64 rng(kKickSeed);

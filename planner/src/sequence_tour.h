@@ -33,6 +33,8 @@ class Tour {
   Visit At(int i) const { return t_[i]; }
   int PositionOf(int course) const { return pos_[course]; }
   double Cost() const { return cost_; }
+  /// The move from the end of a to the start of b (from the table when there is one).
+  double Move(Visit a, Visit b) const { return E(a, b); }
 
   /// Cost change of reversing positions i..k (bidirectional only; i == k flips one course).
   double ReverseDelta(int i, int k) const;
