@@ -207,6 +207,20 @@ TEST(SequenceSolver, Deterministic) {
   }
 }
 
+// A time limit cuts only the kicks, between rounds: a limit that has passed before the first
+// round gives the descent's own answer, the same as no rounds at all.
+TEST(SequenceSolver, TimeLimitCutsWholeRounds) {
+  Gen g{std::mt19937_64(8)};
+  const SequenceProblem p = g.Make(1, 200, CostNorm::kL1, true, true);
+  LocalSearchOptions cut, none;
+  cut.time_limit_s = 1e-12;
+  none.max_rounds = 0;
+  const SequenceSolution a = SolveLocalSearch(p, cut), b = SolveLocalSearch(p, none);
+  ExpectValid(p, a);
+  EXPECT_EQ(a.order, b.order);
+  EXPECT_GE(a.cost, SolveLocalSearch(p).cost);
+}
+
 // Three unit courses on a line (L1, one axis) given in a bad order: [4,5], [0,1], [2,3].
 SequenceProblem LineCase(bool bidirectional, double start) {
   SequenceProblem p;
