@@ -34,7 +34,14 @@
 // descent from the kicks' courses; the result replaces the current tour unless it is worse
 // (equal cost is accepted, so plateaus, common under the max norm, can be crossed), and the
 // cheapest tour seen is returned.
-// A move or kick counts as an improvement only if it saves more than 1e-12 of the cost.
+// A move or kick counts as an improvement only if it saves more than 1e-12 (1 + the
+// nearest-neighbour tour's cost).
+//
+// Work and memory. Up to 1,024 courses every move cost is tabled once ((2n)^2 doubles, 32 MiB
+// at 1,024); above, costs are computed when needed. Building the lists is O(n^2); a move
+// is priced in O(1) and applied in O(n). Release build, 2-core machine, plate of 1,000
+// courses, bidirectional, L1 over 8 axes, default options: about 0.25 s for the whole call
+// (bench/sequence_solver_bench.cpp).
 //
 // Determinism and the time limit. Everything above is a function of the input; the clock is
 // read only between rounds. Without a time limit (0) or when the rounds run out before it, the

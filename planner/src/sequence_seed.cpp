@@ -35,8 +35,9 @@
 // their costs, computed once (O(n^2) moves). "Nearest unvisited" walks that list and falls
 // back to a scan of the unvisited courses only when the list is exhausted; the unvisited set
 // is a compact array, so late scans cost what is left. A path costs
-// O(n * 3^d * 16) plus the late scans; with d <= 4, at most 12 + 3 paths and 64 pool paths,
-// 1,000 courses take well under a second (bench/sequence_solver_bench.cpp).
+// O(n * 3^d * 16) plus the late scans; with d <= 4, at most 12 + 3 paths and 64 pool paths.
+// Release build, plate of 1,000 courses, bidirectional, L1 over 8 axes, default options:
+// about 0.04 s (bench/sequence_solver_bench.cpp); 5,000 courses about 0.9 s.
 #include <algorithm>
 #include <chrono>
 #include <limits>
