@@ -1,0 +1,55 @@
+#pragma once
+// Private helpers shared by the sequence solvers (sequence_*.cpp): where a visit starts and
+// ends, the cost of one move between two visits.
+#include <cassert>
+#include <chrono>
+#include <vector>
+
+#include "stitchsim/planner/sequence_solver.h"
+
+namespace stitchsim::planner::detail {
+
+/// Row `row` of p.points (dim values).
+inline const double* Row(const SequenceProblem& p, int row) {
+  return p.points.data() + static_cast<std::size_t>(row) * static_cast<std::size_t>(p.dim);
+}
+/// Where the head starts laying visit v, and where it lifts off.
+inline const double* StartOf(const SequenceProblem& p, Visit v) {
+  return Row(p, 4 * v.course + (v.reversed ? 2 : 0));
+}
+inline const double* EndOf(const SequenceProblem& p, Visit v) {
+  return Row(p, 4 * v.course + (v.reversed ? 3 : 1));
+}
+/// The off-part move from the end of `a` to the start of `b`.
+inline double Edge(const SequenceProblem& p, Visit a, Visit b) {
+  return MoveCost(p, EndOf(p, a), StartOf(p, b));
+}
+/// From p.start to the start of v; from the end of v to p.finish (0 without a finish).
+inline double FromStart(const SequenceProblem& p, Visit v) {
+  return MoveCost(p, p.start.data(), StartOf(p, v));
+}
+inline double ToFinish(const SequenceProblem& p, Visit v) {
+  return p.finish ? MoveCost(p, EndOf(p, v), p.finish->data()) : 0.0;
+}
+inline Visit Flip(Visit v) { return {v.course, !v.reversed}; }
+
+/// Node numbering of visits: 2 course + reversed.
+inline Visit NodeVisit(int node) { return {node / 2, (node & 1) != 0}; }
+inline int VisitNode(Visit v) { return 2 * v.course + (v.reversed ? 1 : 0); }
+
+/// Asserts the problem's arrays have the sizes its counts promise (programming errors).
+inline void AssertWellFormed(const SequenceProblem& p) {
+  assert(p.courses >= 0 && p.dim >= 0);
+  assert(p.points.size() == 4u * static_cast<std::size_t>(p.courses * p.dim));
+  assert(p.weights.size() == static_cast<std::size_t>(p.dim));
+  assert(p.start.size() == static_cast<std::size_t>(p.dim));
+  assert(!p.finish || p.finish->size() == static_cast<std::size_t>(p.dim));
+  (void)p;
+}
+
+/// Seconds since t0 on the steady clock.
+inline double SecondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace stitchsim::planner::detail

@@ -1,0 +1,120 @@
+// The local search's tour: exact O(1) prices of stretch reversals and moves (see the header).
+#include "sequence_tour.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+
+namespace stitchsim::planner::detail {
+
+Tour::Tour(const SequenceProblem& p, std::vector<Visit> order) : p_(p), t_(std::move(order)) {
+  pos_.assign(static_cast<std::size_t>(p.courses), -1);
+  const int m = 2 * p.courses;
+  for (int u = 0; u < m; ++u) {
+    from_start_.push_back(FromStart(p, NodeVisit(u)));
+    to_finish_.push_back(ToFinish(p, NodeVisit(u)));
+  }
+  if (p.courses <= kTableCourses) {
+    table_.resize(static_cast<std::size_t>(m) * static_cast<std::size_t>(m));
+    for (int a = 0; a < m; ++a) {
+      for (int b = 0; b < m; ++b) table_[a * m + b] = Edge(p, NodeVisit(a), NodeVisit(b));
+    }
+  }
+  Refresh();
+  cost_ = PathCost(p_, t_);
+}
+
+double Tour::Link(int x, int y) const {
+  if (y >= Size()) {
+    if (x >= 0) return F(t_[x]);
+    return p_.finish ? MoveCost(p_, p_.start.data(), p_.finish->data()) : 0.0;
+  }
+  return In(x, t_[y]);
+}
+
+double Tour::ReverseDelta(int i, int k) const {
+  const double after = In(i - 1, Flip(t_[k])) + Out(Flip(t_[i]), k + 1) + (rev_[k] - rev_[i]);
+  const double before = In(i - 1, t_[i]) + Out(t_[k], k + 1) + (fwd_[k] - fwd_[i]);
+  return after - before;
+}
+
+double Tour::ChainDelta(int i, int k, int g, bool flip) const {
+  const Visit first = flip ? Flip(t_[k]) : t_[i];
+  const Visit last = flip ? Flip(t_[i]) : t_[k];
+  const double removal = Link(i - 1, k + 1) - In(i - 1, t_[i]) - Out(t_[k], k + 1);
+  const double insertion = In(g, first) + Out(last, g + 1) - Link(g, g + 1);
+  const double inside = flip ? (rev_[k] - rev_[i]) - (fwd_[k] - fwd_[i]) : 0.0;
+  return removal + insertion + inside;
+}
+
+void Tour::Apply(const TourMove& m) {
+  if (m.kind == TourMove::Kind::kNone) return;
+  const auto begin = t_.begin();
+  if (m.kind == TourMove::Kind::kReverse) {
+    std::reverse(begin + m.i, begin + m.k + 1);
+    for (int x = m.i; x <= m.k; ++x) t_[x] = Flip(t_[x]);
+  } else {
+    scratch_.assign(begin + m.i, begin + m.k + 1);
+    if (m.flip) {
+      std::reverse(scratch_.begin(), scratch_.end());
+      for (Visit& v : scratch_) v = Flip(v);
+    }
+    const int len = m.k - m.i + 1;
+    if (m.g < m.i) {  // shift g+1..i-1 right by len
+      std::move_backward(begin + m.g + 1, begin + m.i, begin + m.k + 1);
+      std::copy(scratch_.begin(), scratch_.end(), begin + m.g + 1);
+    } else {  // shift k+1..g left by len
+      std::move(begin + m.k + 1, begin + m.g + 1, begin + m.i);
+      std::copy(scratch_.begin(), scratch_.end(), begin + m.g + 1 - len);
+    }
+  }
+  cost_ += m.delta;
+  Refresh();
+}
+
+double Tour::BestDirections(std::vector<Visit>& out) const {
+  const int n = Size();
+  out = t_;
+  if (n == 0 || !p_.bidirectional) return 0.0;
+  // best[x][r]: cheapest way to have laid positions 0..x with position x in direction r.
+  std::vector<std::array<double, 2>> best(static_cast<std::size_t>(n));
+  std::vector<std::array<std::uint8_t, 2>> from(static_cast<std::size_t>(n), {0, 0});
+  for (int r = 0; r < 2; ++r) best[0][r] = S({t_[0].course, r == 1});
+  for (int x = 1; x < n; ++x) {
+    for (int r = 0; r < 2; ++r) {
+      const Visit v{t_[x].course, r == 1};
+      const double via0 = best[x - 1][0] + E({t_[x - 1].course, false}, v);
+      const double via1 = best[x - 1][1] + E({t_[x - 1].course, true}, v);
+      best[x][r] = via1 < via0 ? via1 : via0;
+      from[x][r] = via1 < via0 ? 1 : 0;
+    }
+  }
+  const double end0 = best[n - 1][0] + F({t_[n - 1].course, false});
+  const double end1 = best[n - 1][1] + F({t_[n - 1].course, true});
+  int r = end1 < end0 ? 1 : 0;
+  for (int x = n - 1; x >= 0; --x) {
+    out[x].reversed = r == 1;
+    r = from[x][r];
+  }
+  return std::min(end0, end1) - cost_;
+}
+
+void Tour::Restore(const std::vector<Visit>& order, double cost) {
+  t_ = order;
+  cost_ = cost;
+  Refresh();
+}
+
+void Tour::Refresh() {
+  const int n = Size();
+  fwd_.assign(static_cast<std::size_t>(n), 0.0);
+  rev_.assign(static_cast<std::size_t>(n), 0.0);
+  for (int x = 0; x < n; ++x) {
+    pos_[t_[x].course] = x;
+    if (x == 0) continue;
+    fwd_[x] = fwd_[x - 1] + E(t_[x - 1], t_[x]);
+    if (p_.bidirectional) rev_[x] = rev_[x - 1] + E(Flip(t_[x]), Flip(t_[x - 1]));
+  }
+}
+
+}  // namespace stitchsim::planner::detail
