@@ -21,7 +21,7 @@ namespace {
 
 struct SequenceArgs {
   std::string program, scene, output, report, cost = "axes", solver = "local", home, order;
-  bool bidirectional = false, return_home = false, course_level = false;
+  bool bidirectional = false, return_home = false, course_level = false, measure_gap = false;
   double time_limit_s = 10.0;
 };
 
@@ -182,7 +182,7 @@ void SolveSets(const SequenceArgs& a, const Inputs& in, const MeasureSpec& spec,
     std::optional<planner::SequenceSolution> exact;
     if (a.solver == "exact") exact = planner::SolveExact(p);
     if (exact) {
-      sol = std::move(*exact);
+      sol = *exact;
     } else if (a.solver == "seed") {
       sol = planner::SolveSeedMethod(p);
     } else {
@@ -196,7 +196,13 @@ void SolveSets(const SequenceArgs& a, const Inputs& in, const MeasureSpec& spec,
     set.iterations = sol.iterations;
     if (sol.cost > original_cost) {
       sol.order = original;
+      sol.cost = original_cost;
       set.kept_original = true;
+    }
+    set.original_cost = original_cost;
+    set.cost = sol.cost;
+    if (a.measure_gap) {
+      if (exact || (exact = planner::SolveExact(p))) set.optimum = exact->cost;
     }
     for (const auto& v : sol.order)
       o.after.push_back({courses[static_cast<std::size_t>(v.course)], v.reversed});
@@ -274,7 +280,10 @@ Costs LayupCosts(const Inputs& in, const MeasureSpec& axes_spec) {
 
 // Course ends the cell cannot reach forwards: the programme cannot run as written (exit 1).
 bool ReportUnreachable(const Inputs& in) {
-  bool any = false;
+  bool any = !in.ends.home.ok;
+  if (any)
+    std::printf("%s: error[sequence-unreachable]: the cell cannot reach the home pose (%s)\n",
+                in.program.file_name.c_str(), in.ends.home.reason.c_str());
   for (std::size_t c = 0; c < in.program.courses.size(); ++c) {
     for (int k = 0; k < 2; ++k) {
       const EndPoint& e = in.ends.ends[4 * c + static_cast<std::size_t>(k)];
@@ -404,6 +413,8 @@ void AddSequenceCommand(CLI::App& app, int& exit_code) {
   cmd->add_flag("--return-home", a->return_home, "Return to the home pose after the last course");
   cmd->add_option("--time-limit", a->time_limit_s, "Seconds the local search may take per set")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--measure-gap", a->measure_gap,
+                "Also solve every set of up to 16 courses exactly and report the optimum");
   cmd->add_flag("--course-level", a->course_level,
                 "Course-level precedence: a course may move into an earlier set");
   cmd->add_option("--order", a->order,

@@ -47,6 +47,12 @@ void WriteSequenceJson(const SequenceOutcome& o, const program::AfpProgram& prog
                         {"seconds", s.seconds},
                         {"iterations", s.iterations},
                         {"kept_original", s.kept_original},
+                        {"original_cost", s.original_cost},
+                        {"cost", s.cost},
+                        {"optimum", s.optimum ? json(*s.optimum) : json(nullptr)},
+                        {"gap_pct", s.optimum && *s.optimum > 0.0
+                                        ? json(100.0 * (s.cost - *s.optimum) / *s.optimum)
+                                        : json(nullptr)},
                         {"offpart_before", CostsJson(s.offpart_before)},
                         {"offpart_after", CostsJson(s.offpart_after)}});
   }
@@ -91,6 +97,9 @@ void PrintSequenceSummary(const SequenceOutcome& o) {
                 Reduction(s.offpart_before[static_cast<std::size_t>(o.measure)],
                           s.offpart_after[static_cast<std::size_t>(o.measure)]),
                 s.kept_original ? " (programme order kept: the solver found nothing cheaper)" : "");
+    if (s.optimum)
+      std::printf("    set cost %.6g, optimum %.6g (exact): %.3f %% above\n", s.cost, *s.optimum,
+                  *s.optimum > 0.0 ? 100.0 * (s.cost - *s.optimum) / *s.optimum : 0.0);
   }
   for (std::size_t mi = 0; mi < 3; ++mi) {
     const Measure m = kMeasures[mi];

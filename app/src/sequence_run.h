@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,11 @@ struct SetOutcome {
   std::int64_t iterations = 0;
   bool kept_original = false;               ///< the solver's order cost more than the programme's
   Costs offpart_before{}, offpart_after{};  ///< moves into its courses (and home, last set)
+  /// The set's own problem in the chosen measure (from where the previous set ended): the
+  /// programme's order, the order chosen, and (--measure-gap, sets the exact solver takes)
+  /// the optimum.
+  double original_cost = 0.0, cost = 0.0;
+  std::optional<double> optimum;
 };
 
 struct SequenceOutcome {

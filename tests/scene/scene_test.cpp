@@ -258,5 +258,40 @@ TEST(Scene, HeadEnvelopeIsReadAndChecked) {
   EXPECT_EQ(sink.Diagnostics().front().location.line, line);
 }
 
+// The AFP head's `sequence:` block (docs/sequence.md): read with its defaults; a negative
+// weight, an unknown key and a non-number are errors at their line.
+TEST(Scene, HeadSequenceBlockIsReadAndChecked) {
+  DiagnosticSink ok_sink;
+  const auto afp = LoadHeadSpec(ResolveHeadFile("afp", {}), ok_sink);
+  ASSERT_TRUE(afp.has_value());
+  EXPECT_EQ(afp->sequence.retract_mm, 100.0);
+  EXPECT_EQ(afp->sequence.clearance_mm, 100.0);
+  ASSERT_EQ(afp->sequence.axis_weights.size(), 8u);
+  EXPECT_EQ(afp->sequence.axis_weights.front().joint, "rail_x");
+  const std::string text = ReadFile(ResolveHeadFile("afp", {})).value();
+  struct Case {
+    std::string good, bad, code;
+  };
+  for (const Case& c : std::vector<Case>{{"    a3: 0.0142857", "    a3: -1", "head-out-of-range"},
+                                         {"    a3: 0.0142857", "    a3: fast", "head-bad-number"},
+                                         {"  retract_mm: 100", "  retract: 100", "head-unknown-key"},
+                                         {"  clearance_mm: 100", "  clearance_mm: 0", "head-out-of-range"}}) {
+    const auto at = text.find(c.good);
+    ASSERT_NE(at, std::string::npos) << c.good;
+    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
+    std::string copy = text;
+    copy.replace(at, c.good.size(), c.bad);
+    const std::string mjcf = "mjcf: afp.xml";
+    const auto m = copy.find(mjcf);
+    ASSERT_NE(m, std::string::npos);
+    copy.replace(m, mjcf.size(), "mjcf: " + afp->mjcf.string());
+    DiagnosticSink sink;
+    EXPECT_FALSE(LoadHeadSpec(WriteTemp("sequence_head.yaml", copy), sink).has_value()) << c.bad;
+    ASSERT_TRUE(sink.HasErrors()) << c.bad;
+    EXPECT_EQ(sink.Diagnostics().front().code, c.code) << c.bad;
+    EXPECT_EQ(sink.Diagnostics().front().location.line, line) << c.bad;
+  }
+}
+
 }  // namespace
 }  // namespace stitchsim::scene
