@@ -32,7 +32,8 @@ struct Run {
 Run Cli(const std::string& args) {
   const fs::path dir = testing::ScratchDir();
   const fs::path out = dir / "seq_out.txt", err = dir / "seq_err.txt";
-  const std::string cmd = kBinary.string() + " " + args + " >" + out.string() + " 2>" + err.string();
+  const std::string cmd =
+      kBinary.string() + " " + args + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, testing::ReadText(out),
           testing::ReadText(err)};
@@ -42,8 +43,8 @@ Run Cli(const std::string& args) {
 const fs::path& PanelProgramme() {
   static const fs::path nc = [] {
     const fs::path p = testing::ScratchDir() / "panel_two_plies.nc";
-    const Run r = Cli("plan ply --scene " + kPanel.string() + " --ply skin_0 --ply skin_45 -o " +
-                      p.string());
+    const Run r =
+        Cli("plan ply --scene " + kPanel.string() + " --ply skin_0 --ply skin_45 -o " + p.string());
     EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
     return p;
   }();
@@ -120,8 +121,10 @@ std::string WithoutHeader(const std::string& text) {
 TEST(Sequence, DeterministicAndTheReportedOrderReproducesTheProgramme) {
   const fs::path a = testing::ScratchDir() / "det_a.nc", b = testing::ScratchDir() / "det_b.nc";
   const fs::path rep = testing::ScratchDir() / "det.json", c = testing::ScratchDir() / "det_c.nc";
-  const std::string common = PanelProgramme().string() + " --scene " + kPanel.string() + " --bidirectional";
-  ASSERT_EQ(Cli("sequence " + common + " -o " + a.string() + " --report " + rep.string()).exit_code, 0);
+  const std::string common =
+      PanelProgramme().string() + " --scene " + kPanel.string() + " --bidirectional";
+  ASSERT_EQ(Cli("sequence " + common + " -o " + a.string() + " --report " + rep.string()).exit_code,
+            0);
   ASSERT_EQ(Cli("sequence " + common + " -o " + b.string()).exit_code, 0);
   EXPECT_EQ(testing::ReadText(a), testing::ReadText(b));
   const Run given = Cli("sequence " + common + " -o " + c.string() + " --order " + rep.string());
@@ -132,8 +135,8 @@ TEST(Sequence, DeterministicAndTheReportedOrderReproducesTheProgramme) {
 // An order that lays a skin_45 course before the skin_0 course it covers is refused.
 TEST(Sequence, AnOrderBreakingPrecedenceIsRefused) {
   const fs::path rep = testing::ScratchDir() / "prec.json", out = testing::ScratchDir() / "prec.nc";
-  ASSERT_EQ(Cli("sequence " + PanelProgramme().string() + " --scene " + kPanel.string() +
-                " -o " + out.string() + " --report " + rep.string())
+  ASSERT_EQ(Cli("sequence " + PanelProgramme().string() + " --scene " + kPanel.string() + " -o " +
+                out.string() + " --report " + rep.string())
                 .exit_code,
             0);
   auto j = nlohmann::json::parse(testing::ReadText(rep));
@@ -196,11 +199,13 @@ TEST(Sequence, BadProgrammesAreExit2AtTheirLine) {
     const fs::path nc = testing::ScratchDir() / (c.name + ".nc");
     std::ofstream(nc) << c.edited;
     const fs::path out = testing::ScratchDir() / (c.name + "_out.nc");
-    const Run r = Cli("sequence " + nc.string() + " --scene " + kPanel.string() + " -o " + out.string());
+    const Run r =
+        Cli("sequence " + nc.string() + " --scene " + kPanel.string() + " -o " + out.string());
     EXPECT_EQ(r.exit_code, 2) << c.name << "\n" << r.out << r.err;
     EXPECT_NE(r.err.find(c.code), std::string::npos) << c.name << "\n" << r.err;
     const std::string where = nc.string() + ":" + (c.line > 0 ? std::to_string(c.line) + ":" : "");
-    EXPECT_NE(r.err.find(where), std::string::npos) << c.name << " wants " << where << "\n" << r.err;
+    EXPECT_NE(r.err.find(where), std::string::npos) << c.name << " wants " << where << "\n"
+                                                    << r.err;
     EXPECT_FALSE(fs::exists(out)) << c.name;
   }
 }
