@@ -22,6 +22,9 @@ double Reduction(double before, double after) {
   return before > 0.0 ? 100.0 * (before - after) / before : 0.0;
 }
 
+// Signed change in per cent, for people ("-10.5 %" is a reduction).
+double Change(double before, double after) { return -Reduction(before, after); }
+
 }  // namespace
 
 void WriteSequenceJson(const SequenceOutcome& o, const program::AfpProgram& program,
@@ -40,21 +43,21 @@ void WriteSequenceJson(const SequenceOutcome& o, const program::AfpProgram& prog
   json sets = json::array();
   for (std::size_t k = 0; k < o.sets.size(); ++k) {
     const SetOutcome& s = o.sets[k];
-    sets.push_back(json{{"set", k + 1},
-                        {"plies", s.plies},
-                        {"courses", s.courses.size()},
-                        {"solver", s.solver},
-                        {"seconds", s.seconds},
-                        {"iterations", s.iterations},
-                        {"kept_original", s.kept_original},
-                        {"original_cost", s.original_cost},
-                        {"cost", s.cost},
-                        {"optimum", s.optimum ? json(*s.optimum) : json(nullptr)},
-                        {"gap_pct", s.optimum && *s.optimum > 0.0
-                                        ? json(100.0 * (s.cost - *s.optimum) / *s.optimum)
-                                        : json(nullptr)},
-                        {"offpart_before", CostsJson(s.offpart_before)},
-                        {"offpart_after", CostsJson(s.offpart_after)}});
+    sets.push_back(json{
+        {"set", k + 1},
+        {"plies", s.plies},
+        {"courses", s.courses.size()},
+        {"solver", s.solver},
+        {"seconds", s.seconds},
+        {"iterations", s.iterations},
+        {"kept_original", s.kept_original},
+        {"original_cost", s.original_cost},
+        {"cost", s.cost},
+        {"optimum", s.optimum ? json(*s.optimum) : json(nullptr)},
+        {"gap_pct", s.optimum && *s.optimum > 0.0 ? json(100.0 * (s.cost - *s.optimum) / *s.optimum)
+                                                  : json(nullptr)},
+        {"offpart_before", CostsJson(s.offpart_before)},
+        {"offpart_after", CostsJson(s.offpart_after)}});
   }
   j["sets"] = sets;
   json totals;
@@ -90,12 +93,12 @@ void PrintSequenceSummary(const SequenceOutcome& o) {
     const SetOutcome& s = o.sets[k];
     std::string plies;
     for (const int p : s.plies) plies += (plies.empty() ? "" : ",") + std::to_string(p);
-    std::printf("  set %zu (plies %s, %zu courses): off-part %s %.4g -> %.4g (-%.1f %%)%s\n", k + 1,
+    std::printf("  set %zu (plies %s, %zu courses): off-part %s %.4g -> %.4g (%+.1f %%)%s\n", k + 1,
                 plies.c_str(), s.courses.size(), MeasureName(o.measure),
                 s.offpart_before[static_cast<std::size_t>(o.measure)],
                 s.offpart_after[static_cast<std::size_t>(o.measure)],
-                Reduction(s.offpart_before[static_cast<std::size_t>(o.measure)],
-                          s.offpart_after[static_cast<std::size_t>(o.measure)]),
+                Change(s.offpart_before[static_cast<std::size_t>(o.measure)],
+                       s.offpart_after[static_cast<std::size_t>(o.measure)]),
                 s.kept_original ? " (programme order kept: the solver found nothing cheaper)" : "");
     if (s.optimum)
       std::printf("    set cost %.6g, optimum %.6g (exact): %.3f %% above\n", s.cost, *s.optimum,
@@ -104,15 +107,16 @@ void PrintSequenceSummary(const SequenceOutcome& o) {
   for (std::size_t mi = 0; mi < 3; ++mi) {
     const Measure m = kMeasures[mi];
     const double tb = o.offpart_before[mi] + o.layup[mi], ta = o.offpart_after[mi] + o.layup[mi];
-    std::printf("  %-5s off-part %.6g -> %.6g %s (-%.1f %%), total %.6g -> %.6g (-%.1f %%)\n",
-                MeasureName(m), o.offpart_before[mi], o.offpart_after[mi], MeasureUnit(m),
-                Reduction(o.offpart_before[mi], o.offpart_after[mi]), tb, ta, Reduction(tb, ta));
+    std::printf("  %-5s off-part %.6g -> %.6g%s%s (%+.1f %%), total %.6g -> %.6g (%+.1f %%)\n",
+                MeasureName(m), o.offpart_before[mi], o.offpart_after[mi],
+                *MeasureUnit(m) != '\0' ? " " : "", MeasureUnit(m),
+                Change(o.offpart_before[mi], o.offpart_after[mi]), tb, ta, Change(tb, ta));
   }
   const double fb = o.flown_offpart_before_mm, fa = o.flown_offpart_after_mm, l = o.layup[2];
   std::printf(
-      "  flown tool path: off-part %.1f -> %.1f mm (-%.1f %%), total %.1f -> %.1f mm "
-      "(-%.1f %%)\n",
-      fb, fa, Reduction(fb, fa), fb + l, fa + l, Reduction(fb + l, fa + l));
+      "  flown tool path: off-part %.1f -> %.1f mm (%+.1f %%), total %.1f -> %.1f mm "
+      "(%+.1f %%)\n",
+      fb, fa, Change(fb, fa), fb + l, fa + l, Change(fb + l, fa + l));
 }
 
 bool ReadOrderFile(const std::string& file, const program::AfpProgram& program,
