@@ -13,57 +13,82 @@ namespace {
 
 struct PlanPlyArgs {
   std::string scene;
-  std::string ply;
+  std::vector<std::string> plies;
   std::string output;
   std::string tows_csv;
 };
 
-int RunPlanPly(const PlanPlyArgs& a) {
-  if (!OutputsDistinct({{"--output", a.output}, {"--tows-csv", a.tows_csv}})) return kExitBadInput;
-  DiagnosticSink sink;
-  auto scene = scene::LoadScene(a.scene, sink, SceneLoadOptions());
-  if (PrintDiagnostics(sink) || !scene) return kExitBadInput;
-  const scene::PlySpec* ply = scene->FindPly(a.ply);
-  if (ply == nullptr) {
-    std::string names;
-    for (const auto& p : scene->plies) names += (names.empty() ? "" : ", ") + p.name;
-    sink.Error("plan-unknown-ply", SourceLocation{a.scene, 1, 1},
-               "scene '" + scene->name + "' has no ply '" + a.ply +
-                   "' (plies: " + (names.empty() ? "none" : names) + ")");
-    PrintDiagnostics(sink);
-    return kExitBadInput;
-  }
-  const auto t0 = std::chrono::steady_clock::now();
-  auto plan = planner::PlanPly(*scene, *ply, planner::PlyPlanOptions{}, sink);
-  if (PrintDiagnostics(sink) || !plan) return kExitBadInput;
-  const int written = WriteProgramAndCsv(
-      a.output, a.tows_csv,
-      [&](std::ostream& out) {
-        planner::WritePlyProgram(*plan, *scene, program::Dialect::Default(), out);
-      },
-      [&](std::ostream& out) { planner::WritePlyTowsCsv(*plan, out); });
-  if (written != kExitOk) return written;
-  const double wall_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+// Prints one planned ply's summary line and its findings.
+void PrintPly(const scene::Scene& scene, const planner::PlyPlan& plan, double wall_s,
+              const PlanPlyArgs& a) {
   int laid_tows = 0;
-  for (const auto& c : plan->courses)
+  for (const auto& c : plan.courses)
     for (const auto& t : c.tows) laid_tows += t.laid.empty() ? 0 : 1;
   std::printf(
       "%s: ply '%s' (%g deg, coverage %g %%, %d tows of %.3f mm) on %s: %zu courses, %d tows "
       "laid in %d segments, %d cut/add events, lay-up %.1f mm (%.1f s at %g mm/s); min "
       "steering radius %.1f mm (head limit %.1f mm); max gap %.4f mm, max overlap %.4f mm "
       "between courses; planned in %.2f s -> %s%s%s\n",
-      scene->name.c_str(), plan->ply_name.c_str(), plan->angle_rad * 180.0 / 3.14159265358979323846,
-      plan->coverage * 100.0, plan->layout.tows, plan->layout.width_mm, scene->head.name.c_str(),
-      plan->courses.size(), laid_tows, plan->tow_segments, plan->events, plan->laid_length_mm,
-      plan->laid_length_mm / scene->head.afp.layup_speed_mm_s, scene->head.afp.layup_speed_mm_s,
-      plan->min_radius_mm, scene->head.afp.min_steering_radius_mm, plan->max_gap_mm,
-      plan->max_overlap_mm, wall_s, a.output.c_str(), a.tows_csv.empty() ? "" : ", ",
+      scene.name.c_str(), plan.ply_name.c_str(), plan.angle_rad * 180.0 / 3.14159265358979323846,
+      plan.coverage * 100.0, plan.layout.tows, plan.layout.width_mm, scene.head.name.c_str(),
+      plan.courses.size(), laid_tows, plan.tow_segments, plan.events, plan.laid_length_mm,
+      plan.laid_length_mm / scene.head.afp.layup_speed_mm_s, scene.head.afp.layup_speed_mm_s,
+      plan.min_radius_mm, scene.head.afp.min_steering_radius_mm, plan.max_gap_mm,
+      plan.max_overlap_mm, wall_s, a.output.c_str(), a.tows_csv.empty() ? "" : ", ",
       a.tows_csv.c_str());
-  for (const auto& f : plan->findings)
+  for (const auto& f : plan.findings)
     std::printf("error[%s]: %s (the cell cannot lay this ply as planned)\n", f.code.c_str(),
                 f.message.c_str());
-  return plan->findings.empty() ? kExitOk : kExitFindings;
+}
+
+int RunPlanPly(const PlanPlyArgs& a) {
+  if (!OutputsDistinct({{"--output", a.output}, {"--tows-csv", a.tows_csv}})) return kExitBadInput;
+  if (a.plies.size() > 1 && !a.tows_csv.empty()) {
+    PrintError("plan-csv-one-ply", "--tows-csv takes one --ply (its rows are per course)");
+    return kExitBadInput;
+  }
+  DiagnosticSink sink;
+  auto scene = scene::LoadScene(a.scene, sink, SceneLoadOptions());
+  if (PrintDiagnostics(sink) || !scene) return kExitBadInput;
+  std::vector<const scene::PlySpec*> specs;
+  for (const std::string& name : a.plies) {
+    const scene::PlySpec* ply = scene->FindPly(name);
+    if (ply == nullptr) {
+      std::string names;
+      for (const auto& p : scene->plies) names += (names.empty() ? "" : ", ") + p.name;
+      sink.Error("plan-unknown-ply", SourceLocation{a.scene, 1, 1},
+                 "scene '" + scene->name + "' has no ply '" + name +
+                     "' (plies: " + (names.empty() ? "none" : names) + ")");
+      PrintDiagnostics(sink);
+      return kExitBadInput;
+    }
+    specs.push_back(ply);
+  }
+  std::vector<planner::PlyPlan> plans;
+  std::vector<double> seconds;
+  plans.reserve(specs.size());
+  for (const scene::PlySpec* ply : specs) {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto plan = planner::PlanPly(*scene, *ply, planner::PlyPlanOptions{}, sink);
+    if (PrintDiagnostics(sink) || !plan) return kExitBadInput;
+    plans.push_back(std::move(*plan));
+    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::vector<const planner::PlyPlan*> ptrs;
+  for (const auto& p : plans) ptrs.push_back(&p);
+  const int written = WriteProgramAndCsv(
+      a.output, a.tows_csv,
+      [&](std::ostream& out) {
+        planner::WritePlyProgram(ptrs, *scene, program::Dialect::Default(), out);
+      },
+      [&](std::ostream& out) { planner::WritePlyTowsCsv(plans.front(), out); });
+  if (written != kExitOk) return written;
+  bool findings = false;
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    PrintPly(*scene, plans[i], seconds[i], a);
+    findings = findings || !plans[i].findings.empty();
+  }
+  return findings ? kExitFindings : kExitOk;
 }
 
 }  // namespace
@@ -75,7 +100,10 @@ void AddPlanPlyCommand(CLI::App& plan, int& exit_code) {
       "A fibre-placement ply (seed 002): courses offset across the ply, tows cut at its "
       "boundary");
   cmd->add_option("--scene", a->scene, "Scene YAML file (AFP head, `plies:`)")->required();
-  cmd->add_option("--ply", a->ply, "Ply name (the scene's `plies:`)")->required();
+  cmd->add_option("--ply", a->plies,
+                  "Ply name (the scene's `plies:`); repeat it to write several plies into one "
+                  "programme, laid in the order given")
+      ->required();
   cmd->add_option("-o,--output", a->output, "Programme file to write")->required();
   cmd->add_option("--tows-csv", a->tows_csv,
                   "Per course, tow and laid segment: course length and edge points (docs/afp.md)");

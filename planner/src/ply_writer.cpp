@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <map>
 #include <ostream>
+#include <span>
 
 #include "detail/program_text.h"
 #include "stitchsim/planner/ply_planner.h"
@@ -39,26 +40,45 @@ std::map<double, TowCodes> CourseEvents(const PlyCourse& c) {
 
 class PlyWriter {
  public:
-  PlyWriter(const PlyPlan& plan, const scene::Scene& scene, const program::Dialect& d,
-            std::ostream& out)
-      : plan_(plan), scene_(scene), d_(d), w_(out, d), pose_(d) {}
+  PlyWriter(std::span<const PlyPlan* const> plans, const scene::Scene& scene,
+            const program::Dialect& d, std::ostream& out)
+      : plans_(plans), plan_(plans.front()), scene_(scene), d_(d), w_(out, d), pose_(d) {}
 
   void Write() {
     program::ProgramHeader header;
-    header.entries = {{"scene", scene_.name},
-                      {"head", scene_.head.name},
-                      {"ply", plan_.ply_name},
-                      {"angle_deg", Num(plan_.angle_rad * 180.0 / 3.14159265358979323846)},
-                      {"coverage_pct", Num(plan_.coverage * 100.0, "%.0f")},
-                      {"courses", std::to_string(plan_.courses.size())},
-                      {"tows", std::to_string(plan_.layout.tows)}};
+    if (plans_.size() == 1) {
+      header.entries = {{"scene", scene_.name},
+                        {"head", scene_.head.name},
+                        {"ply", plan_->ply_name},
+                        {"angle_deg", Num(plan_->angle_rad * 180.0 / 3.14159265358979323846)},
+                        {"coverage_pct", Num(plan_->coverage * 100.0, "%.0f")},
+                        {"courses", std::to_string(plan_->courses.size())},
+                        {"tows", std::to_string(plan_->layout.tows)}};
+    } else {
+      // Several plies: names joined by commas, courses summed (each ply's own line says more).
+      std::string names;
+      std::size_t courses = 0;
+      for (const PlyPlan* p : plans_) {
+        names += (names.empty() ? "" : ",") + p->ply_name;
+        courses += p->courses.size();
+      }
+      header.entries = {{"scene", scene_.name},
+                        {"head", scene_.head.name},
+                        {"plies", names},
+                        {"courses", std::to_string(courses)},
+                        {"tows", std::to_string(plan_->layout.tows)}};
+    }
     detail::WriteOpening(w_, b_, d_, header, scene_.head.tool_number);
-    b_.m_codes = {d_.m.ply_start};
-    b_.param = plan_.ply_index;
-    b_.comment = "PLY name=" + plan_.ply_name +
-                 " angle=" + Num(plan_.angle_rad * 180.0 / 3.14159265358979323846, "%g");
-    w_.Write(b_);
-    for (const PlyCourse& c : plan_.courses) WriteCourse(c);
+    for (const PlyPlan* p : plans_) {
+      plan_ = p;
+      b_.Clear();
+      b_.m_codes = {d_.m.ply_start};
+      b_.param = plan_->ply_index;
+      b_.comment = "PLY name=" + plan_->ply_name +
+                   " angle=" + Num(plan_->angle_rad * 180.0 / 3.14159265358979323846, "%g");
+      w_.Write(b_);
+      for (const PlyCourse& c : plan_->courses) WriteCourse(c);
+    }
     detail::WriteEnding(w_, b_, d_);
   }
 
@@ -89,7 +109,7 @@ class PlyWriter {
   }
 
   void WriteCourse(const PlyCourse& c) {
-    const int n = static_cast<int>(plan_.courses.size());
+    const int n = static_cast<int>(plan_->courses.size());
     Code(d_.m.course_start, c.number,
          "COURSE " + std::to_string(c.number) + " of " + std::to_string(n));
     Rapid(c.points.front(), d_.m.head_retract, "approach");
@@ -97,7 +117,7 @@ class PlyWriter {
     const auto events = CourseEvents(c);
     std::uint64_t laid = 0;
     const std::uint64_t all =
-        plan_.layout.tows >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << plan_.layout.tows) - 1;
+        plan_->layout.tows >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << plan_->layout.tows) - 1;
     for (const PlyPoint& p : c.points) {
       Feed(p);
       const auto it = events.find(p.s_mm);
@@ -111,7 +131,7 @@ class PlyWriter {
         for (int t : it->second.cut) Code(d_.m.tow_cut, t);
       }
       laid &= ~cut;
-      if (laid == 0 && add == all && plan_.layout.tows == scene_.head.afp.tows) {
+      if (laid == 0 && add == all && plan_->layout.tows == scene_.head.afp.tows) {
         Code(d_.m.tow_add, 0);
       } else {
         for (int t : it->second.add) Code(d_.m.tow_add, t);
@@ -124,7 +144,8 @@ class PlyWriter {
     Code(d_.m.course_end, std::nullopt);
   }
 
-  const PlyPlan& plan_;
+  std::span<const PlyPlan* const> plans_;
+  const PlyPlan* plan_;
   const scene::Scene& scene_;
   const program::Dialect& d_;
   program::ProgramWriter w_;
@@ -137,7 +158,13 @@ class PlyWriter {
 
 void WritePlyProgram(const PlyPlan& plan, const scene::Scene& scene,
                      const program::Dialect& dialect, std::ostream& out) {
-  PlyWriter(plan, scene, dialect, out).Write();
+  const PlyPlan* one[] = {&plan};
+  PlyWriter(one, scene, dialect, out).Write();
+}
+
+void WritePlyProgram(std::span<const PlyPlan* const> plans, const scene::Scene& scene,
+                     const program::Dialect& dialect, std::ostream& out) {
+  PlyWriter(plans, scene, dialect, out).Write();
 }
 
 void WritePlyTowsCsv(const PlyPlan& plan, std::ostream& out) {

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <iosfwd>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -100,6 +101,10 @@ std::optional<PlyPlan> PlanPly(const scene::Scene& scene, const scene::PlySpec& 
 /// M70 for the ply, per course M71, approach along the normal, M21, G1 lay-up with M62/M63 at
 /// their positions, M63 P0, M20, retract, M72; M30.
 void WritePlyProgram(const PlyPlan& plan, const scene::Scene& scene,
+                     const program::Dialect& dialect, std::ostream& out);
+/// Several plies in one programme, laid in the order given: one M70 each (its position in
+/// the scene's `plies:`), courses numbered per ply; the header names them (`plies=a,b`).
+void WritePlyProgram(std::span<const PlyPlan* const> plans, const scene::Scene& scene,
                      const program::Dialect& dialect, std::ostream& out);
 
 /// Per course, tow and laid segment, one row per course point inside the segment:
