@@ -23,6 +23,8 @@ import subprocess
 import sys
 import time
 
+# (cost, solver): the seed reports the tool point's distance; our default cost is the axes'.
+RUNS = (("tool", "seed"), ("tool", "local"), ("axes", "seed"), ("axes", "local"))
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 
@@ -116,14 +118,15 @@ def one_case(binary, out, name, scene, plies, style, verify):
     if verify:
         p, t = run([binary, "verify", bad, "--scene", scene], check=False)
         row["verify_bad"] = p.returncode
-    for solver in ("seed", "local"):
-        nc, rep = os.path.join(d, solver + ".nc"), os.path.join(d, solver + ".json")
+    for cost, solver in RUNS:
+        key = cost + "_" + solver
+        nc, rep = os.path.join(d, key + ".nc"), os.path.join(d, key + ".json")
         _, t = run([binary, "sequence", bad, "--scene", scene, "--bidirectional", "--solver",
-                    solver, "--measure-gap", "-o", nc, "--report", rep])
+                    solver, "--cost", cost, "--measure-gap", "-o", nc, "--report", rep])
         with open(rep) as f:
             r = json.load(f)
         fl = r["totals"]["flown_tool_mm"]
-        row[solver] = {
+        row[key] = {
             "seconds": t,
             "total_pct": reduction(fl["total_before"], fl["total_after"]),
             "offpart_pct": reduction(fl["offpart_before"], fl["offpart_after"]),
@@ -134,7 +137,7 @@ def one_case(binary, out, name, scene, plies, style, verify):
         }
         if verify:
             p, _ = run([binary, "verify", nc, "--scene", scene], check=False)
-            row[solver]["verify"] = p.returncode
+            row[key]["verify"] = p.returncode
     return row
 
 
@@ -155,24 +158,23 @@ def main():
         if a.only and name != a.only:
             continue
         rows.append(one_case(a.binary, a.out, name, scene, plies, style, not a.no_verify))
-    print("flown tool path reduction, %% (total / off-part): paper | seed's method | ours")
-    print("%-14s %7s | %-11s | %-11s | %-11s | verify bad/seed/ours" % ("case", "courses",
-                                                                       "paper", "seed method",
-                                                                       "ours"))
-    for r in rows:
-        pt, po = PAPER.get(r["case"], (None, None))
-        s, o = r["seed"], r["local"]
-        print("%-14s %7d | %s / %s | %s / %s | %s / %s | %s/%s/%s" % (
-            r["case"], r["courses"], fmt(pt), fmt(po), fmt(s["total_pct"]),
-            fmt(s["offpart_pct"]), fmt(o["total_pct"]), fmt(o["offpart_pct"]),
-            r.get("verify_bad", "-"), s.get("verify", "-"), o.get("verify", "-")))
-    print("\nper set (axes cost, bidirectional): gap to the exact optimum, %")
-    for r in rows:
-        for k, (ss, so) in enumerate(zip(r["seed"]["sets"], r["local"]["sets"])):
-            print("%-14s set %d plies %-10s %3d courses: seed %s  ours %s" % (
-                r["case"], k + 1, ",".join(map(str, so["plies"])), so["courses"],
-                "n/a" if ss["gap_pct"] is None else "%.3f" % ss["gap_pct"],
-                "n/a" if so["gap_pct"] is None else "%.3f" % so["gap_pct"]))
+    for cost in ("tool", "axes"):
+        print("\n--cost %s: flown tool path reduction, %% total / off-part: paper | seed's method | "
+              "ours; verify exit of bad / seed / ours" % cost)
+        for r in rows:
+            pt, po = PAPER.get(r["case"], (None, None))
+            s, o = r[cost + "_seed"], r[cost + "_local"]
+            print("%-14s %3d courses | %s / %s | %s / %s | %s / %s | %s/%s/%s" % (
+                r["case"], r["courses"], fmt(pt), fmt(po), fmt(s["total_pct"]),
+                fmt(s["offpart_pct"]), fmt(o["total_pct"]), fmt(o["offpart_pct"]),
+                r.get("verify_bad", "-"), s.get("verify", "-"), o.get("verify", "-")))
+        print("  per set, %s cost: gap to the exact optimum, %%" % cost)
+        for r in rows:
+            for k, (ss, so) in enumerate(zip(r[cost + "_seed"]["sets"], r[cost + "_local"]["sets"])):
+                print("  %-14s set %d plies %-10s %3d courses: seed %s  ours %s" % (
+                    r["case"], k + 1, ",".join(map(str, so["plies"])), so["courses"],
+                    "n/a" if ss["gap_pct"] is None else "%.3f" % ss["gap_pct"],
+                    "n/a" if so["gap_pct"] is None else "%.3f" % so["gap_pct"]))
     with open(os.path.join(a.out, "figures.json"), "w") as f:
         json.dump(rows, f, indent=1)
 

@@ -211,6 +211,18 @@ void SolveSets(const SequenceArgs& a, const Inputs& in, const MeasureSpec& spec,
   }
 }
 
+// The turn about the head axis for an off-part move whose shorter turn is `shorter` (in
+// (-pi, pi]) after `twist` so far: a near half turn goes the way that unwinds; any turn also
+// unwinds when the total would pass 3/4 of a turn (the wrist's a6 has +-350 deg).
+double UnwindingTurn(double twist, double shorter) {
+  constexpr double kPi = 3.14159265358979323846;
+  const double other = shorter > 0.0 ? shorter - 2.0 * kPi : shorter + 2.0 * kPi;
+  const bool near_half = std::abs(shorter) > 0.5 * kPi;
+  const bool winding = std::abs(twist + shorter) > 1.5 * kPi;
+  if ((near_half || winding) && std::abs(twist + other) < std::abs(twist + shorter)) return other;
+  return shorter;
+}
+
 // The off-part blocks of every gap of `visits` (gap i before visit i; the last after the last).
 std::vector<std::vector<program::OffPartBlock>> OffPart(const Inputs& in,
                                                         const std::vector<CourseVisit>& visits,
@@ -224,22 +236,36 @@ std::vector<std::vector<program::OffPartBlock>> OffPart(const Inputs& in,
   std::optional<planner::OffPartEnd> from = planner::OffPartEnd{in.home, false};
   Eigen::Vector3d here = in.home.translation();
   *length_mm = 0.0;
+  // How far the head has turned about its axis since home (radians, unwrapped): the wrist's
+  // last axis follows it. A course laid backwards turns the head round, either way; the way
+  // that brings the total back towards zero is taken, so a6 never winds up to its limit.
+  double twist = 0.0;
   for (std::size_t i = 0; i <= visits.size(); ++i) {
     std::optional<planner::OffPartEnd> to;
     std::optional<double> feed;
+    const program::AfpCourse* c = nullptr;
     if (i < visits.size()) {
-      const auto& c = in.program.courses[static_cast<std::size_t>(visits[i].course)];
-      to = planner::OffPartEnd{program::LayupStartPose(c, visits[i].reversed), true};
-      feed = c.entry.feed_mm_per_min;
+      c = &in.program.courses[static_cast<std::size_t>(visits[i].course)];
+      to = planner::OffPartEnd{program::LayupStartPose(*c, visits[i].reversed), true};
+      feed = c->entry.feed_mm_per_min;
     } else if (return_home) {
       to = planner::OffPartEnd{in.home, false};
     }
+    if (to) {
+      opt.turn_about_z_rad =
+          UnwindingTurn(twist, planner::TwistAboutZ(from->pose.linear(), to->pose.linear()));
+      twist += *opt.turn_about_z_rad;
+    }
     gaps.push_back(planner::OffPartPath(surface, from, to, feed, opt));
     *length_mm += planner::OffPartLength(here, gaps.back());
-    if (i < visits.size()) {
-      const auto& c = in.program.courses[static_cast<std::size_t>(visits[i].course)];
-      from = planner::OffPartEnd{program::LayupEndPose(c, visits[i].reversed), true};
+    if (c != nullptr) {
+      from = planner::OffPartEnd{program::LayupEndPose(*c, visits[i].reversed), true};
       here = from->pose.translation();
+      double layup = 0.0;  // along the stations, small steps: each the shorter way
+      for (std::size_t k = 1; k < c->stations.size(); ++k)
+        layup +=
+            planner::TwistAboutZ(c->stations[k - 1].pose.linear(), c->stations[k].pose.linear());
+      twist += visits[i].reversed ? -layup : layup;
     }
   }
   return gaps;

@@ -7,6 +7,7 @@
 namespace stitchsim::planner {
 namespace {
 
+constexpr double kPi = 3.14159265358979323846;
 using program::Motion;
 using program::OffPartBlock;
 
@@ -65,21 +66,36 @@ void Travel(const geom::Surface& s, const Eigen::Isometry3d& a, const Eigen::Iso
   pts.push_back(a.translation());
   pts.insert(pts.end(), via.begin(), via.end());
   pts.push_back(b.translation());
+  // A turn about the tool z of more than a right angle is made in steps under it (a via
+  // point in the middle at least), so that every move's own (shortest) rotation goes the way
+  // chosen.
+  const double turn = o.turn_about_z_rad.value_or(TwistAboutZ(a.linear(), b.linear()));
+  if (std::abs(turn) > 0.5 * kPi && pts.size() == 2)
+    pts.insert(pts.begin() + 1, 0.5 * (pts[0] + pts[1]));
   double total = 0.0;
   for (std::size_t i = 1; i < pts.size(); ++i) total += (pts[i] - pts[i - 1]).norm();
-  const Eigen::Quaterniond qa(a.linear()), qb(b.linear());
+  // What is left once turned: a small tilt (the next course's normal), taken proportionally.
+  const Eigen::Quaterniond rest(
+      (a.linear() * Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ())).transpose() * b.linear());
   double run = 0.0;
   for (std::size_t i = 1; i < pts.size(); ++i) {
     run += (pts[i] - pts[i - 1]).norm();
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     const double t = total > 0.0 ? run / total : 1.0;
-    pose.linear() = qa.slerp(t, qb).toRotationMatrix();
+    // Turned about z by the fraction of the chosen turn, and the same fraction of the rest.
+    pose.linear() = a.linear() * Eigen::AngleAxisd(t * turn, Eigen::Vector3d::UnitZ()) *
+                    Eigen::Quaterniond::Identity().slerp(t, rest).toRotationMatrix();
     pose.translation() = pts[i];
     out.push_back(Rapid(pose, i + 1 == pts.size() ? "travel" : "travel via"));
   }
 }
 
 }  // namespace
+
+double TwistAboutZ(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  const Eigen::Matrix3d r = a.transpose() * b;
+  return std::atan2(r(1, 0) - r(0, 1), r(0, 0) + r(1, 1));
+}
 
 double HeightAboveSurface(const geom::Surface& surface, const Eigen::Vector3d& p) {
   const geom::SurfaceProjection f = surface.Project(p);

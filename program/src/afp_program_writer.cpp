@@ -1,4 +1,5 @@
 // Course reversal and the writer of a reordered AFP programme (afp_program.h).
+#include <algorithm>
 #include <cmath>
 #include <ostream>
 
@@ -78,7 +79,15 @@ void Writer::Prologue() {
   w_.WriteMark();
   ProgramHeader h = p_.header;
   h.lines.clear();
-  for (const auto& e : o_.header_extra) h.entries.push_back(e);
+  for (const auto& e : o_.header_extra) {  // a key already there takes the new value
+    auto it = std::find_if(h.entries.begin(), h.entries.end(),
+                           [&](const auto& x) { return x.first == e.first; });
+    if (it != h.entries.end()) {
+      it->second = e.second;
+    } else {
+      h.entries.push_back(e);
+    }
+  }
   w_.WriteHeader(h);
   for (int l = 1; l <= p_.prologue_last_line; ++l) {
     const std::string_view line = p_.Line(l);

@@ -51,17 +51,26 @@ TEST(OffPart, OnAPlaneRetractTravelApproachAreExact) {
   b.translation() = Eigen::Vector3d(-400, 100, 0);
   b.linear() = Eigen::AngleAxisd(kPi, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   OffPartOptions o;
+  o.turn_about_z_rad = -kPi;  // the head turns round clockwise (seen from above)
   const auto blocks = OffPartPath(*plane, OffPartEnd{a, true}, OffPartEnd{b, true}, 12000.0, o);
-  ASSERT_EQ(blocks.size(), 3u);  // retract, travel (straight: nothing in the way), approach
+  // Retract, travel in two halves (a half turn is made in quarter turns, so each move's own
+  // shortest rotation goes the chosen way; nothing is in the way), approach.
+  ASSERT_EQ(blocks.size(), 4u);
   EXPECT_TRUE(blocks[0].head_retracted);
   EXPECT_NEAR((blocks[0].pose.translation() - Eigen::Vector3d(400, 0, 100)).norm(), 0.0, 1e-12);
-  EXPECT_NEAR((blocks[1].pose.translation() - Eigen::Vector3d(-400, 100, 100)).norm(), 0.0, 1e-12);
-  EXPECT_TRUE(blocks[1].pose.linear().isApprox(b.linear(), 1e-12));
-  EXPECT_EQ(blocks[2].motion, program::Motion::kFeed);
-  EXPECT_FALSE(blocks[2].head_retracted);
-  ASSERT_TRUE(blocks[2].feed_mm_per_min.has_value());
-  EXPECT_EQ(*blocks[2].feed_mm_per_min, 12000.0);
-  EXPECT_TRUE(blocks[2].pose.isApprox(b, 1e-12));
+  EXPECT_NEAR((blocks[1].pose.translation() - Eigen::Vector3d(0, 50, 100)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(TwistAboutZ(a.linear(), blocks[1].pose.linear()), -0.5 * kPi, 1e-12);
+  EXPECT_NEAR((blocks[2].pose.translation() - Eigen::Vector3d(-400, 100, 100)).norm(), 0.0, 1e-12);
+  EXPECT_TRUE(blocks[2].pose.linear().isApprox(b.linear(), 1e-12));
+  EXPECT_EQ(blocks[3].motion, program::Motion::kFeed);
+  EXPECT_FALSE(blocks[3].head_retracted);
+  ASSERT_TRUE(blocks[3].feed_mm_per_min.has_value());
+  EXPECT_EQ(*blocks[3].feed_mm_per_min, 12000.0);
+  EXPECT_TRUE(blocks[3].pose.isApprox(b, 1e-12));
+  o.turn_about_z_rad = kPi;  // the other way round
+  const auto other = OffPartPath(*plane, OffPartEnd{a, true}, OffPartEnd{b, true}, 12000.0, o);
+  ASSERT_EQ(other.size(), 4u);
+  EXPECT_NEAR(TwistAboutZ(a.linear(), other[1].pose.linear()), 0.5 * kPi, 1e-12);
   // 100 up, 806.2 across, 100 down.
   EXPECT_NEAR(OffPartLength(a.translation(), blocks), 200.0 + std::hypot(800.0, 100.0), 1e-9);
 }

@@ -16,7 +16,15 @@ struct OffPartOptions {
   double clearance_mm = 100.0;  ///< travel keeps the tool point at least this far off the surface
   double sample_mm = 10.0;      ///< travel checked at most this far apart
   int max_refinements = 10;     ///< via points inserted per travel at most (depth of bisection)
+  /// How far the head turns about its own axis (tool z) during the travel, radians, signed:
+  /// a head turned round (a course laid backwards) can turn either way, and the wrist's last
+  /// axis only has so much travel, so the caller chooses. Unset: the shorter way.
+  std::optional<double> turn_about_z_rad;
 };
+
+/// Signed angle (radians, in (-pi, pi]) about the tool z from orientation `a` to `b`: the
+/// z component of the relative rotation (exact when they differ by a turn about z only).
+double TwistAboutZ(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b);
 
 /// Where the head is between lay-ups: a lay-up's end or start (on the surface), or a free pose
 /// (home).

@@ -138,7 +138,8 @@ using OffPartSource = std::function<std::vector<OffPartBlock>(std::size_t index)
 
 struct AfpWriteOptions {
   int tow_count = 16;  ///< for mirroring reversed courses (the head's tows)
-  /// Extra header entries appended to the programme's own (e.g. sequenced=...).
+  /// Header entries added to the programme's own (e.g. sequenced=...); a key the programme's
+  /// header already has takes the new value (a programme sequenced twice stays readable).
   std::vector<std::pair<std::string, std::string>> header_extra;
 };
 
