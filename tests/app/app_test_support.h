@@ -3,8 +3,10 @@
 // folder per test process (ctest runs each case as its own process, in parallel), removed
 // at exit.
 
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -35,6 +37,23 @@ inline const std::filesystem::path& ScratchDir() {
     }
   } cleanup;
   return dir;
+}
+
+/// What one run of the built `stitchsim` printed and returned.
+struct CliRun {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+/// Runs `stitchsim <args>` (a shell command line), capturing stdout and stderr in files named
+/// after `tag` in the scratch folder.
+inline CliRun RunCli(const std::string& args, const std::string& tag) {
+  namespace fs = std::filesystem;
+  const fs::path binary = fs::path(STITCHSIM_BINARY_DIR) / "app" / "stitchsim";
+  const fs::path out = ScratchDir() / (tag + "_out.txt"), err = ScratchDir() / (tag + "_err.txt");
+  const std::string cmd = binary.string() + " " + args + " >" + out.string() + " 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ReadText(out), ReadText(err)};
 }
 
 }  // namespace stitchsim::app::testing

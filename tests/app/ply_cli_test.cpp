@@ -17,35 +17,23 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kSource = STITCHSIM_SOURCE_DIR;
-const fs::path kBinary = fs::path(STITCHSIM_BINARY_DIR) / "app" / "stitchsim";
 const fs::path kPanel = kSource / "scenes" / "afp_panel.yaml";
 
-struct PlyRun {
-  int exit_code = -1;
-  std::string out, err;
-};
+using testing::CliRun;
 
-PlyRun Cli(const std::string& args) {
-  const fs::path dir = testing::ScratchDir();
-  const fs::path out = dir / "ply_out.txt", err = dir / "ply_err.txt";
-  const std::string cmd =
-      kBinary.string() + " " + args + " >" + out.string() + " 2>" + err.string();
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, testing::ReadText(out),
-          testing::ReadText(err)};
-}
+CliRun Cli(const std::string& args) { return testing::RunCli(args, "ply"); }
 
 TEST(PlanPly, BundledPanelPliesPlanAndVerifyClean) {
   for (const std::string ply : {"skin_0", "skin_45"}) {
     const fs::path nc = testing::ScratchDir() / (ply + ".nc");
     const fs::path csv = testing::ScratchDir() / (ply + ".csv");
-    const PlyRun plan = Cli("plan ply --scene " + kPanel.string() + " --ply " + ply + " -o " +
+    const CliRun plan = Cli("plan ply --scene " + kPanel.string() + " --ply " + ply + " -o " +
                             nc.string() + " --tows-csv " + csv.string());
     ASSERT_EQ(plan.exit_code, 0) << plan.out << plan.err;
     EXPECT_NE(plan.out.find("courses"), std::string::npos) << plan.out;
     EXPECT_NE(plan.out.find("min steering radius"), std::string::npos) << plan.out;
     EXPECT_TRUE(fs::exists(csv));
-    const PlyRun verify = Cli("verify --scene " + kPanel.string() + " " + nc.string());
+    const CliRun verify = Cli("verify --scene " + kPanel.string() + " " + nc.string());
     EXPECT_EQ(verify.exit_code, 0) << verify.out << verify.err;
   }
 }
@@ -58,8 +46,8 @@ TEST(PlanPly, PliesOnTheStepPartOfThePanelPlanAndVerifyClean) {
   const fs::path dir = testing::ScratchDir() / "step_panel";
   fs::create_directories(dir);
   const fs::path part = dir / "panel.step";
-  const PlyRun exported = Cli("export-step --scene " + kPanel.string() + " -o " + part.string() +
-                              " --unit inch");
+  const CliRun exported =
+      Cli("export-step --scene " + kPanel.string() + " -o " + part.string() + " --unit inch");
   ASSERT_EQ(exported.exit_code, 0) << exported.out << exported.err;
   std::string text = testing::ReadText(kPanel);
   const std::size_t from = text.find("\nsurface:\n"), to = text.find("\npreform:");
@@ -69,10 +57,10 @@ TEST(PlanPly, PliesOnTheStepPartOfThePanelPlanAndVerifyClean) {
   std::ofstream(scene) << text;
   for (const std::string ply : {"skin_0", "skin_45"}) {
     const fs::path nc = dir / (ply + ".nc");
-    const PlyRun plan =
+    const CliRun plan =
         Cli("plan ply --scene " + scene.string() + " --ply " + ply + " -o " + nc.string());
     ASSERT_EQ(plan.exit_code, 0) << plan.out << plan.err;
-    const PlyRun verify = Cli("verify --scene " + scene.string() + " " + nc.string());
+    const CliRun verify = Cli("verify --scene " + scene.string() + " " + nc.string());
     EXPECT_EQ(verify.exit_code, 0) << verify.out << verify.err;
     for (const char* rule : {"afp.gap", "afp.overlap", "afp.steering_radius", "afp.coverage",
                              "afp.compaction", "collision.head_mold", "kin.reach"}) {
@@ -89,10 +77,10 @@ TEST(PlanPly, WingPliesPlanAndVerifyClean) {
   const fs::path wing = kSource / "scenes" / "naca_wing.yaml";
   for (const std::string ply : {"upper_0", "upper_45"}) {
     const fs::path nc = testing::ScratchDir() / ("wing_" + ply + ".nc");
-    const PlyRun plan =
+    const CliRun plan =
         Cli("plan ply --scene " + wing.string() + " --ply " + ply + " -o " + nc.string());
     ASSERT_EQ(plan.exit_code, 0) << plan.out << plan.err;
-    const PlyRun verify = Cli("verify --scene " + wing.string() + " " + nc.string());
+    const CliRun verify = Cli("verify --scene " + wing.string() + " " + nc.string());
     EXPECT_EQ(verify.exit_code, 0) << verify.out << verify.err;
     EXPECT_NE(verify.out.find(ply + " bare"), std::string::npos) << verify.out;
   }
@@ -108,7 +96,7 @@ TEST(PlanPly, BadPlyIsExit2AtItsLineAndWritesNothing) {
   const fs::path scene = testing::ScratchDir() / "bad_ply.yaml";
   std::ofstream(scene) << text.substr(0, at) << "    coverage: 30" << text.substr(at + key.size());
   const fs::path nc = testing::ScratchDir() / "bad_ply.nc";
-  const PlyRun r = Cli("plan ply --scene " + scene.string() + " --ply skin_0 -o " + nc.string());
+  const CliRun r = Cli("plan ply --scene " + scene.string() + " --ply skin_0 -o " + nc.string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find(scene.string() + ":" + std::to_string(line) + ":"), std::string::npos)
       << r.err;
@@ -133,7 +121,7 @@ TEST(PlanPly, SteeringBelowTheHeadsLimitIsExit1) {
   scene.replace(scene.find("head: afp\n"), 10, "head: afp_strict.yaml\n");
   std::ofstream(dir / "strict_panel.yaml") << scene;
   const fs::path nc = dir / "strict.nc";
-  const PlyRun r = Cli("plan ply --scene " + (dir / "strict_panel.yaml").string() +
+  const CliRun r = Cli("plan ply --scene " + (dir / "strict_panel.yaml").string() +
                        " --ply skin_45 -o " + nc.string());
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("error[ply-steering-radius]"), std::string::npos) << r.out;
@@ -142,7 +130,7 @@ TEST(PlanPly, SteeringBelowTheHeadsLimitIsExit1) {
 
 TEST(PlanPly, UnknownPlyIsExit2) {
   const fs::path nc = testing::ScratchDir() / "none.nc";
-  const PlyRun r = Cli("plan ply --scene " + kPanel.string() + " --ply skin_90 -o " + nc.string());
+  const CliRun r = Cli("plan ply --scene " + kPanel.string() + " --ply skin_90 -o " + nc.string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("plan-unknown-ply"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("skin_0, skin_45"), std::string::npos) << r.err;

@@ -21,23 +21,11 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kSource = STITCHSIM_SOURCE_DIR;
-const fs::path kBinary = fs::path(STITCHSIM_BINARY_DIR) / "app" / "stitchsim";
 const fs::path kPanel = kSource / "scenes" / "afp_panel.yaml";
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out, err;
-};
+using testing::CliRun;
 
-CliRun Cli(const std::string& args) {
-  const fs::path dir = testing::ScratchDir();
-  const fs::path out = dir / "seq_out.txt", err = dir / "seq_err.txt";
-  const std::string cmd =
-      kBinary.string() + " " + args + " >" + out.string() + " 2>" + err.string();
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, testing::ReadText(out),
-          testing::ReadText(err)};
-}
+CliRun Cli(const std::string& args) { return testing::RunCli(args, "seq"); }
 
 // The panel's two plies (they overlap: two precedence sets), planned once per process.
 const fs::path& PanelProgramme() {
