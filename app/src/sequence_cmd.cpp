@@ -211,18 +211,6 @@ void SolveSets(const SequenceArgs& a, const Inputs& in, const MeasureSpec& spec,
   }
 }
 
-// The turn about the head axis for an off-part move whose shorter turn is `shorter` (in
-// (-pi, pi]) after `twist` so far: a near half turn goes the way that unwinds; any turn also
-// unwinds when the total would pass 3/4 of a turn (the wrist's a6 has +-350 deg).
-double UnwindingTurn(double twist, double shorter) {
-  constexpr double kPi = 3.14159265358979323846;
-  const double other = shorter > 0.0 ? shorter - 2.0 * kPi : shorter + 2.0 * kPi;
-  const bool near_half = std::abs(shorter) > 0.5 * kPi;
-  const bool winding = std::abs(twist + shorter) > 1.5 * kPi;
-  if ((near_half || winding) && std::abs(twist + other) < std::abs(twist + shorter)) return other;
-  return shorter;
-}
-
 // The off-part blocks of every gap of `visits` (gap i before visit i; the last after the last).
 std::vector<std::vector<program::OffPartBlock>> OffPart(const Inputs& in,
                                                         const std::vector<CourseVisit>& visits,
@@ -252,8 +240,8 @@ std::vector<std::vector<program::OffPartBlock>> OffPart(const Inputs& in,
       to = planner::OffPartEnd{in.home, false};
     }
     if (to) {
-      opt.turn_about_z_rad =
-          UnwindingTurn(twist, planner::TwistAboutZ(from->pose.linear(), to->pose.linear()));
+      opt.turn_about_z_rad = planner::UnwindingTurn(
+          twist, planner::TwistAboutZ(from->pose.linear(), to->pose.linear()));
       twist += *opt.turn_about_z_rad;
     }
     gaps.push_back(planner::OffPartPath(surface, from, to, feed, opt));

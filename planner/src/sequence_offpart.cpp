@@ -97,6 +97,14 @@ double TwistAboutZ(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   return std::atan2(r(1, 0) - r(0, 1), r(0, 0) + r(1, 1));
 }
 
+double UnwindingTurn(double twist, double shorter) {
+  const double other = shorter > 0.0 ? shorter - 2.0 * kPi : shorter + 2.0 * kPi;
+  const bool near_half = std::abs(shorter) > 0.5 * kPi;
+  const bool winding = std::abs(twist + shorter) > 1.5 * kPi;
+  if ((near_half || winding) && std::abs(twist + other) < std::abs(twist + shorter)) return other;
+  return shorter;
+}
+
 double HeightAboveSurface(const geom::Surface& surface, const Eigen::Vector3d& p) {
   const geom::SurfaceProjection f = surface.Project(p);
   return (p - f.point).dot(f.normal);

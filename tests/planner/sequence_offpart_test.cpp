@@ -120,5 +120,26 @@ TEST(OffPart, HeightAboveSurfaceMatchesTheClosedForm) {
   }
 }
 
+// A bidirectional programme turns the head round at every backward course. Made the shorter
+// way each time, near-half turns that all lean one way (179 deg) wind the wrist up: two of them
+// are 358 deg, past a6's 350. The policy turns back instead, and leaves small turns alone.
+TEST(OffPart, HalfTurnsUnwindTheHeadInsteadOfWindingIt) {
+  const double deg = kPi / 180.0;
+  double twist = 0.0, worst = 0.0;
+  for (int i = 0; i < 20; ++i) {
+    twist += UnwindingTurn(twist, 179.0 * deg);
+    worst = std::max(worst, std::abs(twist));
+  }
+  EXPECT_LT(worst, 181.0 * deg);
+  double shorter_way = 0.0;
+  for (int i = 0; i < 20; ++i) shorter_way += 179.0 * deg;
+  EXPECT_GT(shorter_way, 350.0 * deg);  // what always taking the shorter way would do
+  EXPECT_NEAR(UnwindingTurn(0.0, 10.0 * deg), 10.0 * deg, 1e-15);            // small: as it is
+  EXPECT_NEAR(UnwindingTurn(250.0 * deg, 10.0 * deg), 10.0 * deg, 1e-15);    // 260: still inside
+  EXPECT_NEAR(UnwindingTurn(265.0 * deg, 10.0 * deg), -350.0 * deg, 1e-12);  // 275: back round
+  EXPECT_NEAR(UnwindingTurn(180.0 * deg, 170.0 * deg), -190.0 * deg, 1e-12);
+  EXPECT_NEAR(UnwindingTurn(-180.0 * deg, -170.0 * deg), 190.0 * deg, 1e-12);
+}
+
 }  // namespace
 }  // namespace stitchsim::planner

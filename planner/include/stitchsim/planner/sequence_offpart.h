@@ -48,6 +48,14 @@ std::vector<program::OffPartBlock> OffPartPath(const geom::Surface& surface,
 /// Tool-point path length of `blocks` starting from `from` (mm): the as-flown off-part motion.
 double OffPartLength(const Eigen::Vector3d& from, const std::vector<program::OffPartBlock>& blocks);
 
+/// The turn about the head axis (radians) for an off-part move whose shorter turn is
+/// `shorter` (in (-pi, pi]), the head having turned `twist` in all since home: a near half turn
+/// (a course laid backwards) goes the way that brings the total back towards zero, and so does
+/// any turn that would take the total past 3/4 of a turn. The wrist's last axis follows the
+/// total; made the shorter way every time, the half turns of a bidirectional programme wind it
+/// to its limit (a6: +-350 deg).
+double UnwindingTurn(double twist, double shorter);
+
 /// Height of `p` above the surface along the normal at its foot point (negative beneath).
 double HeightAboveSurface(const geom::Surface& surface, const Eigen::Vector3d& p);
 
