@@ -3,12 +3,12 @@
 # runs it for SECONDS, seeded from its corpus (tests/fuzz/corpus/TARGET + bundled data).
 # New inputs go to build-fuzz/corpus/TARGET, crashes to build-fuzz/artifacts/TARGET/.
 # Usage: scripts/fuzz.sh TARGET SECONDS [libFuzzer flags...]
-#   TARGET: program | dialect | head_spec | scene | stl | trace
+#   TARGET: program | dialect | head_spec | scene | stl | trace | afp_program
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 if (($# < 2)); then
-  echo "usage: $0 program|dialect|head_spec|scene|stl|trace SECONDS [libFuzzer flags...]" >&2
+  echo "usage: $0 program|dialect|head_spec|scene|stl|trace|afp_program SECONDS [libFuzzer flags...]" >&2
   exit 2
 fi
 target=$1 seconds=$2

@@ -74,6 +74,24 @@ bool AxisWeights(const scene::HeadSpec& head, const sim::RobotModel& robot, Diag
   return !sink.HasErrors();
 }
 
+// Every tow a programme lays must be one of the head's (a course laid backwards mirrors them).
+bool TowsOnHead(const AfpProgram& p, const scene::HeadSpec& head, DiagnosticSink& sink) {
+  const int k = head.afp.tows;
+  const std::uint64_t beyond = k >= 64 ? 0 : ~((std::uint64_t{1} << k) - 1);
+  for (const auto& c : p.courses) {
+    for (const auto& st : c.stations) {
+      // None beyond the head's, or all of them: P0 adds every tow there is.
+      const std::uint64_t high = st.tows & beyond;
+      if (high == 0 || high == beyond) continue;
+      sink.Error(
+          "sequence-tow-beyond-head", SourceLocation{p.file_name, st.source_line, 1},
+          "a tow beyond the head's " + std::to_string(k) + " lays here (head '" + head.name + "')");
+      return false;
+    }
+  }
+  return true;
+}
+
 // A programme's plies must name the scene's plies (M70 P<n>, n its position in `plies:`).
 bool PliesKnown(const AfpProgram& p, const scene::Scene& scene, DiagnosticSink& sink) {
   for (const auto& ply : p.plies) {
@@ -102,6 +120,7 @@ std::optional<Inputs> LoadInputs(const SequenceArgs& a) {
   if (!sink.HasErrors())
     prog = program::ReadAfpProgram(file, program::Dialect::Default(), a.program, sink);
   if (prog) PliesKnown(*prog, scene, sink);
+  if (prog) TowsOnHead(*prog, scene.head, sink);
   AxisWeights(scene.head, *in.loaded.robot, sink, in.axis_weights);
   if (PrintDiagnostics(sink) || !prog) return std::nullopt;
   in.program = std::move(*prog);

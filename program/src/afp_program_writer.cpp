@@ -93,7 +93,11 @@ void Writer::Prologue() {
     const std::string_view line = p_.Line(l);
     std::size_t i = line.find_first_not_of(" \t");
     if (i == std::string_view::npos) continue;
-    if (line.substr(i, 1) == "%" || line.substr(i).rfind("(STITCHSIM", 0) == 0) continue;
+    // The header is written above, from the reader's entries (whatever spacing they had).
+    const auto& header_lines = p_.header.lines;
+    if (line.substr(i, 1) == "%" ||
+        std::find(header_lines.begin(), header_lines.end(), l) != header_lines.end())
+      continue;
     Raw(line);
   }
   // The prologue's own modal state is not tracked: state what the off-part moves rely on.

@@ -186,6 +186,12 @@ TEST(Sequence, BadProgrammesAreExit2AtTheirLine) {
     t.replace(at, 6, "M70 P7");
     cases.push_back({"unknown_ply", "sequence-unknown-ply", t, LineOf(text, "M70 P2")});
   }
+  {
+    std::string t = text;
+    const auto at = t.find("M62 P4\n");
+    t.replace(at, 6, "M62 P30");  // the head has 16 tows
+    cases.push_back({"tow_beyond_head", "sequence-tow-beyond-head", t, LineOf(text, "M62 P4\n")});
+  }
   for (const Case& c : cases) {
     const fs::path nc = testing::ScratchDir() / (c.name + ".nc");
     std::ofstream(nc) << c.edited;
