@@ -108,11 +108,20 @@ class OcctSurface final : public Surface {
   SurfaceProjection Project(const Eigen::Vector3d& p) const override {
     thread_local const OcctSurface* hint_owner = nullptr;
     thread_local Eigen::Vector2d hint_uv;
+    double grid_d2 = 0.0;
+    const Eigen::Vector2d grid_uv = NearestGridPoint(p, &grid_d2);
     Newton r;
     if (hint_owner == this) r = Descend(p, hint_uv);
-    if (!r.converged || !r.inside) {
-      const Newton g = Descend(p, NearestGridPoint(p));
-      if (g.converged && (!r.converged || g.inside)) r = g;
+    // The previous call's answer makes a good start for a neighbouring point, but from a far
+    // one the descent can end in another local minimum (the other skin of a wing that wraps
+    // round its section). Its answer stands only when no farther than the nearest grid sample;
+    // otherwise the descent from that sample decides, and the nearer answer is kept.
+    const bool hint_ok = r.converged && r.inside && (Point(r.uv) - p).squaredNorm() <= grid_d2;
+    if (!hint_ok) {
+      const Newton g = Descend(p, grid_uv);
+      const bool g_nearer =
+          !r.converged || (Point(g.uv) - p).squaredNorm() < (Point(r.uv) - p).squaredNorm();
+      if (g.converged && (!r.converged || (g.inside && (!r.inside || g_nearer)))) r = g;
     }
     if (!r.converged) r = GlobalSearch(p);
     hint_owner = this;
@@ -204,7 +213,7 @@ class OcctSurface final : public Surface {
     return len;
   }
 
-  Eigen::Vector2d NearestGridPoint(const Eigen::Vector3d& p) const {
+  Eigen::Vector2d NearestGridPoint(const Eigen::Vector3d& p, double* squared = nullptr) const {
     double best = std::numeric_limits<double>::infinity();
     Eigen::Vector2d uv = Eigen::Vector2d::Zero();
     for (const auto& [g_uv, g_p] : grid_) {
@@ -214,6 +223,7 @@ class OcctSurface final : public Surface {
         uv = g_uv;
       }
     }
+    if (squared != nullptr) *squared = best;
     return uv;
   }
 

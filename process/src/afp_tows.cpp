@@ -1,8 +1,41 @@
 #include "stitchsim/process/afp_tows.h"
 
+#include <cmath>
+#include <limits>
+
 #include "stitchsim/geom/surface_walk.h"
 
 namespace stitchsim::process {
+namespace {
+
+// Grid cells per direction searched for the near side when a projection landed on the far one.
+constexpr int kNearSideGrid = 48;
+
+// The foot of `p` on the side of the surface whose normal faces `z` (the head): Gauss-Newton
+// from the nearest grid point that faces it. Rare (a far-side projection); about 2,400 surface
+// evaluations.
+geom::SurfaceFoot NearSideFoot(const geom::Surface& s, const Eigen::Vector3d& p,
+                               const Eigen::Vector3d& z) {
+  const geom::Domain2 d = s.Domain();
+  double best = std::numeric_limits<double>::infinity();
+  Eigen::Vector2d best_uv = Eigen::Vector2d::Zero();
+  for (int i = 0; i <= kNearSideGrid; ++i) {
+    for (int k = 0; k <= kNearSideGrid; ++k) {
+      const Eigen::Vector2d uv =
+          d.min +
+          (d.max - d.min).cwiseProduct(Eigen::Vector2d(i, k) / static_cast<double>(kNearSideGrid));
+      const double dist = (s.Point(uv) - p).squaredNorm();
+      if (dist < best && s.Normal(uv).dot(z) > 0.0) {
+        best = dist;
+        best_uv = uv;
+      }
+    }
+  }
+  if (!std::isfinite(best)) return {};
+  return geom::ProjectNear(s, p, best_uv);
+}
+
+}  // namespace
 
 TowLayout TowLayoutOf(const scene::HeadSpec& head) {
   return TowLayout{head.afp.tows, head.afp.tow_width_mm};
@@ -27,6 +60,11 @@ TowCross TowsAt(const geom::Surface& surface, const Eigen::Isometry3d& tool_part
     const geom::SurfaceProjection proj = surface.Project(p);
     if (!proj.inside_domain) return out;
     foot = geom::ProjectNear(surface, p, proj.uv);
+    // The roller presses on the side of the surface its head axis comes from. On a thin or
+    // closed part (a wing's skin wraps round its section) a global projection can land on the
+    // far side; then start again from the nearest of a grid of points that face the head.
+    const Eigen::Vector3d z = tool_part.linear().col(2);
+    if (foot.converged && surface.Normal(foot.uv).dot(z) <= 0.0) foot = NearSideFoot(surface, p, z);
     if (!foot.converged) return out;
   }
   if (!surface.Domain().Contains(foot.uv, 1e-6)) return out;

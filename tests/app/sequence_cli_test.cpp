@@ -261,5 +261,25 @@ TEST(Sequence, SeedPlanarPartReorderedVerifiesClean) {
   EXPECT_EQ(v.exit_code, 0) << v.out << v.err;
 }
 
+// The wing's two upper plies (OCCT B-spline skin that wraps round its section), reordered
+// bidirectionally, verify clean as planned. The first such run failed afp.compaction and
+// afp.coverage: after a jump to a far course the rules' global projection landed on the lower
+// skin (166 mm "below the surface"); projections no longer depend on the previous one, and
+// a tow foot facing away from the head is looked for again on the near side.
+TEST(Sequence, WingPliesReorderedVerifyClean) {
+  const fs::path scene = kSource / "scenes" / "naca_wing.yaml";
+  const fs::path planned = testing::ScratchDir() / "wing2.nc";
+  ASSERT_EQ(Cli("plan ply --scene " + scene.string() + " --ply upper_0 --ply upper_45 -o " +
+                planned.string())
+                .exit_code,
+            0);
+  const fs::path out = testing::ScratchDir() / "wing2_seq.nc";
+  const CliRun r = Cli("sequence " + planned.string() + " --scene " + scene.string() +
+                       " --bidirectional -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const CliRun v = Cli("verify " + out.string() + " --scene " + scene.string());
+  EXPECT_EQ(v.exit_code, 0) << v.out << v.err;
+}
+
 }  // namespace
 }  // namespace stitchsim::app

@@ -8,6 +8,7 @@
 
 #include "../geom/seed_wing.h"
 #include "scene_test_support.h"
+#include "stitchsim/common/files.h"
 #include "stitchsim/geom/naca.h"
 #include "stitchsim/geom/wing_surface.h"
 #include "stitchsim/scene/scene.h"
@@ -164,6 +165,38 @@ TEST(WingScene, TheBundledWingVerifiesACourseOnItsUpperSkin) {
   EXPECT_EQ(RunCli("verify " + (dir / "c.nc").string() + " --scene " + scene.string(), log), 0)
       << ReadAll(log);
   EXPECT_NE(ReadAll(log).find("PASS"), std::string::npos) << ReadAll(log);
+}
+
+// A projection must not depend on what was projected before. The wing's skin wraps round its
+// section, so the distance from a point just off the upper skin has a second local minimum on
+// the lower skin; a descent started from the previous call's answer there once ended on it
+// (found when a reordered AFP programme moved from one course to a far one: afp.compaction saw
+// the tool point 166 mm below the surface). Each point is projected after a far one and fresh.
+TEST(WingScene, ProjectionDoesNotDependOnThePreviousOne) {
+  DiagnosticSink sink;
+  const auto scene = LoadScene(DataDir() / "scenes" / "naca_wing.yaml", sink);
+  ASSERT_TRUE(scene);
+  const geom::Surface& s = *scene->surface;
+  const geom::Domain2 d = s.Domain();
+  int compared = 0;
+  for (int i = 1; i < 8; ++i) {
+    for (int k = 1; k < 8; ++k) {
+      const Eigen::Vector2d uv(d.min.x() + (d.max.x() - d.min.x()) * i / 8.0,
+                               d.min.y() + (d.max.y() - d.min.y()) * k / 8.0);
+      const Eigen::Vector3d p = s.Point(uv) + 20.0 * s.Normal(uv);  // 20 mm off the skin
+      // First from far away: the mirror point across the domain.
+      const Eigen::Vector2d far(d.max.x() + d.min.x() - uv.x(), d.max.y() + d.min.y() - uv.y());
+      (void)s.Project(s.Point(far));
+      const geom::SurfaceProjection after_far = s.Project(p);
+      (void)s.Project(s.Point(uv));
+      const geom::SurfaceProjection after_near = s.Project(p);
+      EXPECT_NEAR(after_far.signed_distance_mm, 20.0, 1e-6) << uv.transpose();
+      EXPECT_NEAR(after_near.signed_distance_mm, 20.0, 1e-6) << uv.transpose();
+      EXPECT_LT((after_far.point - after_near.point).norm(), 1e-6) << uv.transpose();
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 49);
 }
 
 }  // namespace
