@@ -42,7 +42,9 @@ struct TowCross {
 };
 
 /// The tow boundaries at `tool_part` (tool pose, part frame, mm). `uv_hint`: a parameter near
-/// the tool point's foot (the previous pose's), or nullptr for a global projection.
+/// the tool point's foot (the previous pose's), or nullptr for a global projection (a foot
+/// whose normal faces away from the head, on the far side of a thin or closed part, is looked
+/// for again among grid points that face it).
 /// `max_substep_mm` bounds the walk's steps (geom::WalkOnSurface); 0: half a tow width (the
 /// walk's arc is exact on a circle: on the seed's wing a 1 mm step moves no boundary by more
 /// than 3e-5 mm, and planner and verifier both use the default).
