@@ -130,6 +130,7 @@ verify::Report RunReport(const std::string& program_file, const std::string& sce
   report.moves = run.moves;
   report.stitch_length_mm = stitch_length_mm;
   report.cycle_time_s = run.cycle_time_s;
+  report.cycle_time_timed_s = run.cycle_time_timed_s;
   return report;
 }
 

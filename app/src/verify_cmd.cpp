@@ -2,9 +2,11 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <iostream>
 
 #include "cli_common.h"
@@ -14,7 +16,10 @@
 #include "stitchsim/process/stitch_cycle.h"
 #include "stitchsim/program/dialect.h"
 #include "stitchsim/program/identity.h"
+#include "stitchsim/sim/dynamics.h"
 #include "stitchsim/sim/executor.h"
+#include "stitchsim/sim/mujoco_cell.h"
+#include "stitchsim/sim/timing.h"
 #include "stitchsim/trace/trace_file.h"
 #include "stitchsim/verify/verifier.h"
 
@@ -31,7 +36,44 @@ struct VerifyArgs {
   std::string save_trace;
   bool no_collision = false;
   bool allow_mismatch = false;
+  bool dynamics = false;
 };
+
+// The cell as MuJoCo runs it: one working state for the executor's kinematics (and the
+// collision world's frames), one for the timing sink's inverse dynamics, and with
+// --dynamics two for the physics and the poses of its reference and actual joints.
+struct MujocoCells {
+  std::unique_ptr<sim::MujocoCell> kinematics, timing, physics, physics_poses;
+};
+
+std::optional<MujocoCells> MakeMujocoCells(const LoadedScene& ls, const sim::CellSetup& cell,
+                                           bool dynamics) {
+  BoundedDiagnosticSink diagnostics(20);
+  MujocoCells cells;
+  cells.kinematics = sim::MujocoCell::Create(*ls.scene, *ls.robot, cell, diagnostics);
+  if (PrintDiagnostics(diagnostics) || !cells.kinematics) return std::nullopt;
+  cells.timing = cells.kinematics->Share();
+  if (dynamics) {
+    if (!cells.kinematics->HasServos()) {
+      PrintError("mujoco-model", "--dynamics: " + ls.scene->cell_mjcf.string() +
+                                     " lacks a servo actuator (servo_<joint>) for every joint");
+      return std::nullopt;
+    }
+    cells.physics = cells.kinematics->Share();
+    cells.physics_poses = cells.kinematics->Share();
+  }
+  return cells;
+}
+
+sim::TimingOptions TimingOptionsFor(const program::Dialect& dialect,
+                                    const sim::ExecuteOptions& execute) {
+  sim::TimingOptions t;
+  t.law.ramp_time_s = dialect.trajectory.ramp_time_s;
+  t.law.continuous = dialect.trajectory.continuous;
+  t.law.look_ahead_lines = dialect.trajectory.look_ahead_lines;
+  t.settle_time_s = execute.settle_time_s;
+  return t;
+}
 
 // The programme's header against the scene it is verified on: a programme written for
 // another scene or head is bad input (both names given), unless overridden on purpose.
@@ -216,6 +258,18 @@ int WriteCloseUp(const LoadedScene& ls, const sim::CellSetup& cell, const verify
   return RunRenderScene(ls, req);
 }
 
+// The dynamic run's figures on stderr: physics time, wall time, real-time factor, worst lag.
+void PrintDynamicsFigures(const sim::DynamicsFigures& f,
+                          std::chrono::steady_clock::time_point started) {
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  std::fprintf(stderr,
+               "dynamics: %.2f s of motion simulated in %.2f s (%.1fx real time), %ld samples "
+               "tracked, largest tool lag %.4f mm on line %d\n",
+               f.simulated_s, wall, wall > 0.0 ? f.simulated_s / wall : 0.0, f.samples,
+               f.max_error_mm, f.max_error_line);
+}
+
 int RunVerify(const VerifyArgs& a) {
   if (!OutputsDistinct(
           {{"--report", a.report_json}, {"--junit", a.junit}, {"--save-trace", a.save_trace}})) {
@@ -252,25 +306,40 @@ int RunVerify(const VerifyArgs& a) {
     collision = sim::CollisionWorld::Create(*ls->scene, *ls->robot, world_diagnostics);
     if (PrintDiagnostics(world_diagnostics) || !collision) return kExitBadInput;
   }
-  const trace::CellDescription cell_description = sim::DescribeCell(*ls->robot, collision.get());
+  std::optional<MujocoCells> mj = MakeMujocoCells(*ls, cell, a.dynamics);
+  if (!mj) return kExitBadInput;
+  if (collision) collision->UseKinematics(mj->kinematics.get());
+  trace::CellDescription cell_description = sim::DescribeCell(*ls->robot, collision.get());
+  cell_description.timed = true;
+  cell_description.dynamic = a.dynamics;
   verify::RuleContext ctx{ls->scene.get(), &cell_description, &model};
   ctx.declared_stitches = id->stitches;
   sim::ExecuteOptions execute_options = sim::ExecuteOptionsFor(*ls->scene);
   execute_options.collision = collision.get();
   execute_options.allow_head_mismatch = a.allow_mismatch;
+  execute_options.mujoco = mj->kinematics.get();
+  execute_options.solve_every_sample = a.dynamics;
   verify::Verifier verifier(ctx, !a.snapshots.empty());
   std::unique_ptr<trace::TraceFileWriter> saved;
   if (!a.save_trace.empty()) {
     saved = OpenTrace(a, *ls, cell, cell_description, *id, stitch_length);
     if (!saved) return kExitBadInput;
   }
+  // executor -> progress -> timing (time law, inverse dynamics) [-> physics] -> verifier, file
   TeeSink tee(verifier, saved.get());
-  ProgressSink progress(tee, ::isatty(2) != 0);
+  std::optional<sim::DynamicsSink> physics;
+  if (a.dynamics) physics.emplace(*mj->physics, *mj->physics_poses, tee);
+  sim::TimingSink timing(*mj->timing, *ls->robot, TimingOptionsFor(dialect, execute_options),
+                         physics ? static_cast<trace::TraceSink&>(*physics) : tee);
+  ProgressSink progress(timing, ::isatty(2) != 0);
+  const auto started = std::chrono::steady_clock::now();
   const sim::ExecutionSummary run =
       sim::ExecuteProgram(cell, model, input, execute_options, diagnostics, progress);
   progress.Done();
   if (PrintDiagnostics(diagnostics) || !run.ok) return kExitBadInput;
-  const trace::TraceFileSummary summary{run.lines, run.moves, run.time_s};
+  timing.Finish();
+  if (physics) PrintDynamicsFigures(physics->Figures(), started);
+  const trace::TraceFileSummary summary{run.lines, run.moves, run.time_s, timing.CycleTime()};
   if (saved) {
     if (std::string err = saved->Commit(summary); !err.empty()) {
       PrintError("io-write", "--save-trace: " + err);
@@ -323,6 +392,9 @@ void AddVerifyCommand(CLI::App& app, int& exit_code) {
   AddScenePathFlag(*cmd);
   cmd->add_flag("--no-collision", args->no_collision,
                 "Skip the FCL collision checks (collision.* rules)");
+  cmd->add_flag("--dynamics", args->dynamics,
+                "Step MuJoCo's physics with the joint servos tracking the timed trajectory: the "
+                "needle rules see the arm's lag, dyn.tracking reports it");
   cmd->add_flag("--allow-mismatch", args->allow_mismatch,
                 "Verify a programme whose header names another scene or head, or that mounts "
                 "another head (T.. M6), on this scene's cell anyway");

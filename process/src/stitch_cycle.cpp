@@ -53,9 +53,10 @@ double WindowMetrics::MaxSideForceMm() const {
 
 NeedleWindow::NeedleWindow(const ProcessModel& model) : model_(&model) {}
 
-void NeedleWindow::Enter(const Eigen::Isometry3d& tool) {
+void NeedleWindow::Enter(const Eigen::Isometry3d& tool, const Eigen::Isometry3d* walk_reference) {
   active_ = true;
   entry_ = tool;
+  entry_reference_ = (walk_reference != nullptr ? *walk_reference : tool).translation();
   metrics_ = WindowMetrics{};
   metrics_.side_force_mm.assign(model_->needles.size(), 0.0);
   entry_points_.assign(model_->needles.size(), {});
@@ -66,12 +67,14 @@ void NeedleWindow::Enter(const Eigen::Isometry3d& tool) {
   }
 }
 
-void NeedleWindow::Update(const Eigen::Isometry3d& tool) {
+void NeedleWindow::Update(const Eigen::Isometry3d& tool, const Eigen::Isometry3d* walk_reference) {
   if (!active_) return;
   // The walk moves both needles along head y, matched to the catcher (the tool point): it
-  // cancels the tool point's travel along the head's current y axis.
-  const Eigen::Vector3d travel = tool.translation() - entry_.translation();
-  const Eigen::Vector3d y = tool.linear().col(1);
+  // cancels the tool point's travel along the head's current y axis. It runs with the drive,
+  // so it follows the commanded travel; an arm lagging its command drifts the needles.
+  const Eigen::Isometry3d& reference = walk_reference != nullptr ? *walk_reference : tool;
+  const Eigen::Vector3d travel = reference.translation() - entry_reference_;
+  const Eigen::Vector3d y = reference.linear().col(1);
   const double walk = -y.dot(travel);
   metrics_.walk_demand_mm = std::max(metrics_.walk_demand_mm, std::abs(walk));
   const Eigen::Vector3d walk_offset(0.0, walk, 0.0);

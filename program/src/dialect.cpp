@@ -181,6 +181,16 @@ bool CheckFormat(const Dialect& d, const KeyLocator& locate, DiagnosticSink& sin
                "max_line_length must be in 64..65536");
     ok = false;
   }
+  if (!(d.trajectory.ramp_time_s > 0.0 && d.trajectory.ramp_time_s <= 60.0)) {
+    sink.Error(codes::kDialectBadValue, locate("trajectory.ramp_time_s"),
+               "trajectory.ramp_time_s must be a number in (0, 60] seconds");
+    ok = false;
+  }
+  if (d.trajectory.look_ahead_lines < 1 || d.trajectory.look_ahead_lines > 10000) {
+    sink.Error(codes::kDialectBadValue, locate("trajectory.look_ahead_lines"),
+               "trajectory.look_ahead_lines must be in 1..10000");
+    ok = false;
+  }
   return ok;
 }
 

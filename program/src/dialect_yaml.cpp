@@ -91,6 +91,25 @@ class DialectLoader {
                    });
              }},
             {"tools", [&](const YAML::Node& v, const std::string& p) { Tools(v, p, d); }},
+            {"trajectory",
+             [&](const YAML::Node& v, const std::string& p) {
+               Map(v, p,
+                   {
+                       {"blending",
+                        [&](const YAML::Node& b, const std::string& bp) {
+                          std::string mode;
+                          String(b, bp, mode);
+                          if (mode == "continuous" || mode == "exact_stop") {
+                            d.trajectory.continuous = mode == "continuous";
+                          } else if (b.IsScalar()) {
+                            Fail(codes::kDialectBadValue, b,
+                                 bp + ": '" + mode + "' (known: continuous, exact_stop)");
+                          }
+                        }},
+                       {"ramp_time_s", DoubleSetter(d.trajectory.ramp_time_s)},
+                       {"look_ahead_lines", IntSetter(d.trajectory.look_ahead_lines)},
+                   });
+             }},
         });
     return ok_;
   }
@@ -165,6 +184,22 @@ class DialectLoader {
     }
     out = value;
     return true;
+  }
+
+  void Double(const YAML::Node& node, const std::string& path, double& out) {
+    const std::string text = node.IsScalar() ? node.Scalar() : std::string();
+    double value = 0.0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (!node.IsScalar() || text.empty() || ec != std::errc() ||
+        end != text.data() + text.size()) {
+      Fail(codes::kDialectBadValue, node, path + ": expected a number");
+      return;
+    }
+    out = value;
+  }
+
+  Handler DoubleSetter(double& out) {
+    return [this, &out](const YAML::Node& v, const std::string& p) { Double(v, p, out); };
   }
 
   Handler IntSetter(int& out) {

@@ -58,6 +58,15 @@ constexpr LimitSpec kTable[] = {
      "joint speed error limit, as a fraction of the URDF maximum"},
     {K::kJointSpeedWarningPct, "kin.joint_speed", "warning_pct", U::kPct, kNone, false,
      "joint speed warning limit, percent of the URDF maximum"},
+    {K::kAccelerationMaxFraction, "kin.acceleration", "max_fraction", U::kFraction, 1.0, false,
+     "joint acceleration on the timed trajectory, error limit as a fraction of the URDF's"},
+    {K::kTorqueMaxFraction, "kin.torque", "max_fraction", U::kFraction, 1.0, false,
+     "joint torque (inverse dynamics on the timed trajectory), error limit as a fraction of the "
+     "URDF effort"},
+    {K::kTorqueWarningPct, "kin.torque", "warning_pct", U::kPct, kNone, false,
+     "joint torque warning limit, percent of the URDF effort"},
+    {K::kPayloadMaxFraction, "kin.payload", "max_fraction", U::kFraction, 1.0, false,
+     "head mass and moments about a5 and a6, error limit as a fraction of the load diagram's"},
     {K::kSyncErrorMm, "program.sync", "error_mm", U::kMm, 0.01, false,
      "largest U / V / tool-travel inconsistency of a line"},
     {K::kSyncChordAllowancePct, "program.sync", "chord_allowance_pct", U::kPct, 2.0, false,
@@ -94,6 +103,10 @@ constexpr LimitSpec kTable[] = {
      "area of a ply left bare, beyond the band of one tow width along its boundary, percent"},
     {K::kAfpCoverageMaxDoubledPct, "afp.coverage", "max_doubled_pct", U::kPct, 5.0, false,
      "area of a ply covered twice or more, beyond the band along its boundary, percent"},
+    {K::kTrackingErrorMm, "dyn.tracking", "error_mm", U::kMm, 2.0, false,
+     "tool point lagging its command in a dynamic run (`verify --dynamics`), error"},
+    {K::kTrackingWarningMm, "dyn.tracking", "warning_mm", U::kMm, 0.5, false,
+     "tool point lagging its command in a dynamic run, warning"},
 };
 static_assert(std::size(kTable) == kLimitKeyCount, "one row per LimitKey");
 

@@ -86,6 +86,12 @@ trace::CellDescription DescribeCell(const RobotModel& robot, const CollisionWorl
   d.lower_limits = robot.lower_limits();
   d.upper_limits = robot.upper_limits();
   d.max_velocities = robot.max_velocities();
+  d.max_accelerations = robot.max_accelerations();
+  d.max_efforts = robot.efforts();
+  d.payload_rated_kg = robot.payload_rating().mass_kg;
+  d.payload_rated_lz_m = robot.payload_rating().lz_m;
+  d.payload_rated_lxy_m = robot.payload_rating().lxy_m;
+  d.wrist_to_flange_m = robot.opw().c4_m;
   d.collision_checked = collision != nullptr;
   if (collision != nullptr) d.bodies = collision->BodyNames();
   return d;

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "detail/collision_model.h"
+#include "stitchsim/sim/mujoco_cell.h"
 
 namespace stitchsim::sim {
 namespace {
@@ -69,8 +70,15 @@ const Body& BodyAt(const CollisionModel& model, int i) {
 // Every body at the first placement; after that only the moving ones (fixed bodies keep
 // their first placement).
 void Place(const CollisionModel& model, CollisionData& data, const JointVector& q) {
-  ForwardKinematics(model.robot, q, data.frames);
-  const Eigen::Isometry3d part = PartPoseWorld(model.cell, q[kRotator]);
+  Eigen::Isometry3d part;
+  if (data.kinematics != nullptr) {
+    data.kinematics->SetJoints(q);
+    data.kinematics->LinkFramesOut(data.frames);
+    part = data.kinematics->PartWorld();
+  } else {
+    ForwardKinematics(model.robot, q, data.frames);
+    part = PartPoseWorld(model.cell, q[kRotator]);
+  }
   data.part_world = part;
   const bool all = !data.placed;
   const std::size_t count = all ? model.bodies.size() : model.moving_bodies.size();
@@ -393,6 +401,8 @@ std::unique_ptr<CollisionWorld> CollisionWorld::Create(const scene::Scene& scene
 std::unique_ptr<CollisionWorld> CollisionWorld::Share() const {
   return std::unique_ptr<CollisionWorld>(new CollisionWorld(model_));
 }
+
+void CollisionWorld::UseKinematics(MujocoCell* kinematics) { data_->kinematics = kinematics; }
 
 CollisionResult CollisionWorld::Check(const JointVector& q, const CollisionOptions& options) {
   return CheckCollision(*model_, *data_, q, options);

@@ -209,7 +209,7 @@ class Executor {
     if (t.stitch < 0) t.stitch = 0;
     // Joints on the coarse grid and at line ends; needle events and the fine in-preform
     // samples feed the process rules, which need only the tool pose.
-    if (first || last || tag == SampleEvent::kLineEnd) {
+    if (first || last || tag == SampleEvent::kLineEnd || options_.solve_every_sample) {
       SolveSample(from, to, s, t);
       if (options_.collision != nullptr && trace::JointsUsable(t)) RecordCollision(t);
     }
@@ -238,6 +238,12 @@ class Executor {
     if (trace::IkUsable(t.ik_status)) {
       joints_ = sol.ik.joints;
       have_joints_ = true;
+      // Kinematic mode: the arm stands at the solved joints, and MuJoCo says where that puts
+      // the tool (equal to the command to 1e-9 m where the IK solved it exactly).
+      if (options_.mujoco != nullptr) {
+        options_.mujoco->SetJoints(t.joints);
+        t.tool_part = options_.mujoco->ToolInPartMm();
+      }
     }
   }
 

@@ -23,7 +23,9 @@ inline constexpr std::uint16_t kHasContacts = 1u << 7;
 inline constexpr std::uint16_t kHasError = 1u << 8;
 inline constexpr std::uint16_t kSameRotation = 1u << 9;  ///< rotation as the previous sample's
 inline constexpr std::uint16_t kHasClearancePair = 1u << 10;
-inline constexpr std::uint16_t kKnownSampleFlags = (1u << 11) - 1;
+inline constexpr std::uint16_t kHasTiming = 1u << 11;  ///< timed_s (+ velocities... with joints)
+inline constexpr std::uint16_t kTracked = 1u << 12;    ///< tracking errors (dynamic mode)
+inline constexpr std::uint16_t kKnownSampleFlags = (1u << 13) - 1;
 
 /// Line flags (u8).
 inline constexpr std::uint8_t kRapid = 1u << 0;

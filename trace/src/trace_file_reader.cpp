@@ -143,6 +143,14 @@ void DecodeHeader(Decoder& d, TraceFileHeader& h) {
   d.Vec(h.cell.lower_limits, "lower joint limits");
   d.Vec(h.cell.upper_limits, "upper joint limits");
   d.Vec(h.cell.max_velocities, "joint speeds");
+  d.Vec(h.cell.max_accelerations, "joint accelerations");
+  d.Vec(h.cell.max_efforts, "joint torque limits");
+  for (double* v : {&h.cell.payload_rated_kg, &h.cell.payload_rated_lz_m,
+                    &h.cell.payload_rated_lxy_m, &h.cell.wrist_to_flange_m}) {
+    *v = d.F64("payload rating");
+  }
+  h.cell.timed = d.Bool("timed flag");
+  h.cell.dynamic = d.Bool("dynamic flag");
   h.cell.collision_checked = d.Bool("collision-checked flag");
   const std::uint32_t bodies = d.Count(codec::kMaxBodies, 4, "bodies");
   h.cell.bodies.reserve(bodies);
@@ -169,7 +177,7 @@ void DecodeLine(Decoder& d, LineRecord& l) {
   l.from = d.Pose("line start pose");
   l.to = d.Pose("line end pose");
   for (double* v : {&l.drive_from_mm, &l.drive_to_mm, &l.path_from_mm, &l.path_to_mm, &l.duration_s,
-                    &l.feed_mm_per_min, &l.samples_needed}) {
+                    &l.feed_mm_per_min, &l.samples_needed, &l.timed_duration_s}) {
     *v = d.F64("line record");
   }
   l.tows = d.Le(8, "tow mask");
@@ -261,6 +269,20 @@ void DecodeSample(Decoder& d, const CellDescription& cell, bool have_previous, T
     s.configuration.wrist = (config & 4) != 0 ? Wrist::kFlip : Wrist::kNoFlip;
     d.Vec(s.joints, "joints");
   }
+  if ((flags & codec::kHasTiming) != 0) {
+    s.has_timing = true;
+    s.timed_s = d.F64("timed time");
+    if (s.has_joints) {
+      d.Vec(s.joint_velocities, "joint velocities");
+      d.Vec(s.joint_accelerations, "joint accelerations");
+      d.Vec(s.joint_torques, "joint torques");
+    }
+  }
+  if ((flags & codec::kTracked) != 0) {
+    s.tracked = true;
+    s.tracking_error_mm = d.F64("tracking error");
+    s.tracking_error_deg = d.F64("tracking error (angle)");
+  }
   if ((flags & codec::kCollisionChecked) != 0) DecodeCollision(d, flags, cell, s.collision);
 }
 
@@ -336,6 +358,7 @@ bool TraceFileReader::Replay(TraceSink& sink, TraceFileSummary& summary, std::st
         summary.lines = d.I64("line count");
         summary.moves = d.I64("move count");
         summary.cycle_time_s = d.F64("cycle time");
+        summary.cycle_time_timed_s = d.F64("timed cycle time");
         if (!d.AtEnd()) throw BadTrace{d.Offset(), "corrupt: bytes after the summary"};
         return true;
       } else {

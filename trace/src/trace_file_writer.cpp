@@ -68,6 +68,14 @@ void EncodeHeader(const TraceFileHeader& h, Encoder& e) {
   e.Vec(h.cell.lower_limits);
   e.Vec(h.cell.upper_limits);
   e.Vec(h.cell.max_velocities);
+  e.Vec(h.cell.max_accelerations);
+  e.Vec(h.cell.max_efforts);
+  for (double v : {h.cell.payload_rated_kg, h.cell.payload_rated_lz_m, h.cell.payload_rated_lxy_m,
+                   h.cell.wrist_to_flange_m}) {
+    e.F64(v);
+  }
+  e.U8(h.cell.timed ? 1 : 0);
+  e.U8(h.cell.dynamic ? 1 : 0);
   e.U8(h.cell.collision_checked ? 1 : 0);
   e.U32(static_cast<std::uint32_t>(h.cell.bodies.size()));
   for (const std::string& body : h.cell.bodies) e.Str(body);
@@ -144,7 +152,7 @@ void TraceFileWriter::OnLine(const LineRecord& l) {
   e.Pose(l.from);
   e.Pose(l.to);
   for (double v : {l.drive_from_mm, l.drive_to_mm, l.path_from_mm, l.path_to_mm, l.duration_s,
-                   l.feed_mm_per_min, l.samples_needed}) {
+                   l.feed_mm_per_min, l.samples_needed, l.timed_duration_s}) {
     e.F64(v);
   }
   e.U64(l.tows);
@@ -167,6 +175,8 @@ void TraceFileWriter::OnSample(const TraceSample& s) {
   if (c.checked && !c.error.empty()) flags |= codec::kHasError;
   if (same_rotation) flags |= codec::kSameRotation;
   if (c.checked && c.clearance_body_a >= 0) flags |= codec::kHasClearancePair;
+  if (s.has_timing) flags |= codec::kHasTiming;
+  if (s.tracked) flags |= codec::kTracked;
   e.U8(codec::kSampleTag);
   e.U16(flags);
   e.F64(s.time_s);
@@ -183,6 +193,18 @@ void TraceFileWriter::OnSample(const TraceSample& s) {
     e.U8(ConfigurationBits(s.configuration));
     e.Vec(s.joints);
   }
+  if (s.has_timing) {
+    e.F64(s.timed_s);
+    if (s.has_joints) {
+      e.Vec(s.joint_velocities);
+      e.Vec(s.joint_accelerations);
+      e.Vec(s.joint_torques);
+    }
+  }
+  if (s.tracked) {
+    e.F64(s.tracking_error_mm);
+    e.F64(s.tracking_error_deg);
+  }
   if (c.checked) EncodeCollision(c, e);
   impl_->last_rotation = s.tool_part.linear();
   e.FlushTo(impl_->file->Stream());
@@ -194,6 +216,7 @@ std::string TraceFileWriter::Commit(const TraceFileSummary& summary) {
   e.I64(summary.lines);
   e.I64(summary.moves);
   e.F64(summary.cycle_time_s);
+  e.F64(summary.cycle_time_timed_s);
   e.FlushTo(impl_->file->Stream());
   return impl_->file->Commit();
 }

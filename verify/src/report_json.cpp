@@ -107,6 +107,7 @@ std::string ReportToJson(const Report& report) {
   j["counts"] = std::move(counts);
   j["stitch_length_mm"] = Number(report.stitch_length_mm);
   j["cycle_time_s"] = Number(report.cycle_time_s);
+  j["cycle_time_timed_s"] = Number(report.cycle_time_timed_s);
   Json rules = Json::array();
   for (const RuleSummary& rule : report.rules) rules.push_back(RuleToJson(rule));
   j["rules"] = std::move(rules);

@@ -113,6 +113,10 @@ std::string Headline(const Report& report) {
           SkippedText(report.skipped) + "; " + Count(report.stitches, "stitch", "stitches") + ", " +
           Count(report.moves, "move", "moves") + ", cycle " + FormatFixed1(report.cycle_time_s) +
           " s";
+  if (report.cycle_time_timed_s > 0.0) {
+    line += " at the programmed speeds, " + FormatFixed1(report.cycle_time_timed_s) +
+            " s with acceleration";
+  }
   return line;
 }
 

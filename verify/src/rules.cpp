@@ -495,6 +495,11 @@ std::unique_ptr<Rule> MakeCollisionClearanceRule(const RuleContext& ctx);
 std::unique_ptr<Rule> MakeConstraintCrossingRule(const RuleContext& ctx);  // constraint_rules.cpp
 std::unique_ptr<Rule> MakeStitchCountRule(const RuleContext& ctx);         // program_rules.cpp
 std::unique_ptr<Rule> MakeLineSamplingRule();                              // sampling_rule.cpp
+// dynamics_rules.cpp
+std::unique_ptr<Rule> MakeAccelerationRule(const RuleContext& ctx);
+std::unique_ptr<Rule> MakeTorqueRule(const RuleContext& ctx);
+std::unique_ptr<Rule> MakePayloadRule(const RuleContext& ctx);
+std::unique_ptr<Rule> MakeTrackingRule(const RuleContext& ctx);
 // afp_*.cpp: the fibre-placement rules over what the programme lays (one sampler shared).
 using LaidTowsPtr = std::shared_ptr<detail::LaidTows>;
 std::unique_ptr<Rule> MakeAfpSteeringRule(const RuleContext& ctx, LaidTowsPtr laid);
@@ -502,6 +507,15 @@ std::unique_ptr<Rule> MakeAfpGapRule(const RuleContext& ctx, LaidTowsPtr laid);
 std::unique_ptr<Rule> MakeAfpOverlapRule(const RuleContext& ctx, LaidTowsPtr laid);
 std::unique_ptr<Rule> MakeAfpCompactionRule(const RuleContext& ctx, LaidTowsPtr laid);
 std::unique_ptr<Rule> MakeAfpCoverageRule(const RuleContext& ctx, LaidTowsPtr laid);
+
+namespace {
+
+// kin.payload needs the head's mass (head spec `inertial:`) and the arm's load diagram.
+bool PayloadCheckable(const RuleContext& ctx) {
+  return ctx.scene->head.inertial && ctx.cell->payload_rated_kg > 0.0;
+}
+
+}  // namespace
 
 std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   std::vector<std::unique_ptr<Rule>> rules;
@@ -527,6 +541,10 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
   rules.push_back(std::make_unique<SingularityRule>(ctx));
   rules.push_back(std::make_unique<ConfigFlipRule>());
   rules.push_back(std::make_unique<JointSpeedRule>(ctx));
+  if (ctx.cell->timed) rules.push_back(MakeAccelerationRule(ctx));
+  if (ctx.cell->timed) rules.push_back(MakeTorqueRule(ctx));
+  if (PayloadCheckable(ctx)) rules.push_back(MakePayloadRule(ctx));
+  if (ctx.cell->dynamic) rules.push_back(MakeTrackingRule(ctx));
   rules.push_back(std::make_unique<SyncRule>(ctx));
   if (stitching) rules.push_back(std::make_unique<EmptyProgramRule>());
   if (stitching && ctx.declared_stitches) rules.push_back(MakeStitchCountRule(ctx));
@@ -543,6 +561,17 @@ std::vector<SkippedRule> SkippedRules(const RuleContext& ctx) {
   if (!ctx.scene->head.IsStitching() && ctx.scene->plies.empty()) {
     skipped.push_back({"afp.coverage", "the scene has no plies"});
   }
+  if (!ctx.cell->timed) {
+    for (const char* id : {"kin.acceleration", "kin.torque"}) {
+      skipped.push_back({id, "the trace has no timed trajectory"});
+    }
+  }
+  if (!PayloadCheckable(ctx)) {
+    skipped.push_back({"kin.payload", ctx.scene->head.inertial
+                                          ? "the cell model gives no load diagram"
+                                          : "the head spec gives no mass (`inertial:`)"});
+  }
+  if (!ctx.cell->dynamic) skipped.push_back({"dyn.tracking", "not a dynamic run (--dynamics)"});
   if (ctx.cell->collision_checked) return skipped;
   const std::string reason = "--no-collision";
   for (const char* id : {"collision.head_mold", "collision.robot_cell", "collision.clearance"}) {

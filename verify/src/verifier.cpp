@@ -38,7 +38,16 @@ void Verifier::MarkStitch(long stitch, std::size_t errors_before, std::size_t wa
 }
 
 void Verifier::OnLine(const trace::LineRecord& line) {
+  line_from_ = line.from;
+  line_to_ = line.to;
   for (auto& r : rules_) r->OnLine(line);
+}
+
+// A dynamic run's sample: the commanded pose the walk follows (tool_part is the actual one).
+const Eigen::Isometry3d* Verifier::WalkReference(const trace::TraceSample& s) {
+  if (!s.tracked) return nullptr;
+  commanded_ = process::InterpolatePose(line_from_, line_to_, s.line_fraction);
+  return &commanded_;
 }
 
 void Verifier::OnSample(const trace::TraceSample& s) {
@@ -49,7 +58,7 @@ void Verifier::OnSample(const trace::TraceSample& s) {
   if (s.event == trace::SampleEvent::kNeedleEntry) {
     if (window_.Active()) CloseWindow();
     ++stitches_;
-    window_.Enter(s.tool_part);
+    window_.Enter(s.tool_part, WalkReference(s));
     window_stitch_ = s.stitch;
     window_entry_line_ = s.source_line;
     last_in_sample_ = s;
@@ -73,7 +82,7 @@ void Verifier::OnSample(const trace::TraceSample& s) {
   }
   if (!window_.Active()) return;
   if (s.needles_in) {
-    window_.Update(s.tool_part);
+    window_.Update(s.tool_part, WalkReference(s));
     last_in_sample_ = s;
     if (s.event == trace::SampleEvent::kNeedleExit) CloseWindow();
   } else {

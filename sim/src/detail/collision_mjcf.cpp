@@ -12,10 +12,6 @@
 namespace stitchsim::sim::detail {
 namespace {
 
-struct ModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
-
 // Worldbody contents of a stand-alone MJCF fragment (a head file).
 std::string WorldbodyInner(const std::string& xml) {
   const auto b = xml.find("<worldbody>");
@@ -31,16 +27,15 @@ Eigen::Isometry3d PoseOf(const mjtNum* pos, const mjtNum* quat) {
   return t;
 }
 
-using ModelPtr = std::unique_ptr<mjModel, ModelDeleter>;
+}  // namespace
 
-// The cell model with the head's worldbody inserted at its marker (the head's bodies under
-// "stitchsim_head_root"), compiled by MuJoCo; null (and a diagnostic) on failure.
-ModelPtr CompileCellWithHead(const std::filesystem::path& cell_mjcf,
-                             const std::filesystem::path& head_mjcf, DiagnosticSink& sink) {
+MjModelPtr CompileCellWithHead(const std::filesystem::path& cell_mjcf,
+                               const std::filesystem::path& head_mjcf, DiagnosticSink& sink,
+                               const std::string& head_root_extra, const std::string& code) {
   const auto cell = ReadFile(cell_mjcf);
   const auto head = ReadFile(head_mjcf);
   if (!cell || !head) {
-    sink.Error("collision-mjcf", {(!cell ? cell_mjcf : head_mjcf).string(), 0, 0},
+    sink.Error(code, {(!cell ? cell_mjcf : head_mjcf).string(), 0, 0},
                "cannot read MJCF file");
     return nullptr;
   }
@@ -49,29 +44,32 @@ ModelPtr CompileCellWithHead(const std::filesystem::path& cell_mjcf,
   const std::string marker = "<!--STITCHSIM:HEAD-->";
   const auto at = text.find(marker);
   if (inner.empty() || at == std::string::npos) {
-    sink.Error("collision-mjcf", {head_mjcf.string(), 0, 0},
+    sink.Error(code, {head_mjcf.string(), 0, 0},
                "head MJCF has no <worldbody> content or the cell lacks the head marker");
     return nullptr;
   }
   // Tag the head's bodies so its geoms can be told apart after compilation.
-  text.replace(at, marker.size(), "<body name=\"stitchsim_head_root\">" + inner + "</body>");
+  text.replace(at, marker.size(),
+               "<body name=\"stitchsim_head_root\">" + head_root_extra + inner + "</body>");
   auto vfs = std::make_unique<mjVFS>();  // megabytes: keep it off the stack
   mj_defaultVFS(vfs.get());
   const char* name = "stitchsim_collision.xml";
   if (mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(text.size())) != 0) {
-    sink.Error("collision-mjcf", {cell_mjcf.string(), 0, 0}, "MuJoCo VFS is full");
+    sink.Error(code, {cell_mjcf.string(), 0, 0}, "MuJoCo VFS is full");
     return nullptr;
   }
   std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), name)], text.data(), text.size());
   char error[1024] = {0};
-  ModelPtr m(mj_loadXML(name, vfs.get(), error, sizeof(error)));
+  MjModelPtr m(mj_loadXML(name, vfs.get(), error, sizeof(error)));
   mj_deleteVFS(vfs.get());
   if (!m) {
-    sink.Error("collision-mjcf", {cell_mjcf.string(), 0, 0},
+    sink.Error(code, {cell_mjcf.string(), 0, 0},
                std::string("MuJoCo could not compile the cell + head model: ") + error);
   }
   return m;
 }
+
+namespace {
 
 std::string BodyName(const mjModel& m, int b) {
   const char* n = mj_id2name(&m, mjOBJ_BODY, b);
@@ -130,7 +128,7 @@ std::vector<MjcfGeom> LoadMjcfGeoms(const std::filesystem::path& cell_mjcf,
                                     DiagnosticSink& sink, bool& ok) {
   ok = false;
   std::vector<MjcfGeom> out;
-  const ModelPtr m = CompileCellWithHead(cell_mjcf, head_mjcf, sink);
+  const MjModelPtr m = CompileCellWithHead(cell_mjcf, head_mjcf, sink);
   if (!m) return out;
   bool good = true;
   for (int g = 0; g < m->ngeom; ++g) {

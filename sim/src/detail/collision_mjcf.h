@@ -3,8 +3,11 @@
 // the head fragment inserted at its marker, compiled by MuJoCo (compiled geom frames are exact:
 // fromto, euler and the like are resolved by the compiler).
 
+#include <mujoco/mujoco.h>
+
 #include <Eigen/Geometry>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -25,6 +28,19 @@ struct MjcfGeom {
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< MuJoCo geom_size (half extents, m)
   Eigen::Isometry3d pose_in_link = Eigen::Isometry3d::Identity();
 };
+
+struct MjModelDeleter {
+  void operator()(mjModel* m) const { mj_deleteModel(m); }
+};
+using MjModelPtr = std::unique_ptr<mjModel, MjModelDeleter>;
+
+/// The cell model with the head's worldbody inserted at its marker (the head's bodies under a
+/// body "stitchsim_head_root", which starts with `head_root_extra`, e.g. an <inertial>),
+/// compiled by MuJoCo; null and a diagnostic with `code` on failure.
+MjModelPtr CompileCellWithHead(const std::filesystem::path& cell_mjcf,
+                               const std::filesystem::path& head_mjcf, DiagnosticSink& sink,
+                               const std::string& head_root_extra = {},
+                               const std::string& code = "collision-mjcf");
 
 /// Compiles `cell_mjcf` with `head_mjcf` inserted at <!--STITCHSIM:HEAD--> and returns every
 /// geom; `link_names` are the URDF links (bodies of those names share their frames). Codes

@@ -115,6 +115,9 @@ class CollisionData {
 
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;  ///< per body
   LinkFrames frames;
+  /// Where the link frames come from: MuJoCo's kinematics when set (CollisionWorld::
+  /// UseKinematics), else the URDF forward kinematics.
+  MujocoCell* kinematics = nullptr;
   Eigen::Isometry3d part_world = Eigen::Isometry3d::Identity();  ///< at the last placement
   /// Per body, at its current placement: oriented box, and the world box around it (FCL's
   /// own object box is the bounding sphere's box once a body is rotated: far too loose).

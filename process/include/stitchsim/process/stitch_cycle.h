@@ -54,10 +54,12 @@ struct WindowMetrics {
 class NeedleWindow {
  public:
   explicit NeedleWindow(const ProcessModel& model);
-  /// The needles enter the preform with the tool at `tool`.
-  void Enter(const Eigen::Isometry3d& tool);
-  /// A later pose while the needles are still in.
-  void Update(const Eigen::Isometry3d& tool);
+  /// The needles enter the preform with the tool at `tool`. `walk_reference`: the commanded
+  /// tool pose, which the walk mechanism follows (it runs with the drive, matched to the
+  /// programmed travel), when the arm is not exactly on it (a dynamic run); null: the tool.
+  void Enter(const Eigen::Isometry3d& tool, const Eigen::Isometry3d* walk_reference = nullptr);
+  /// A later pose while the needles are still in (`walk_reference` as for Enter).
+  void Update(const Eigen::Isometry3d& tool, const Eigen::Isometry3d* walk_reference = nullptr);
   bool Active() const { return active_; }
   const WindowMetrics& Metrics() const { return metrics_; }
 
@@ -65,6 +67,7 @@ class NeedleWindow {
   const ProcessModel* model_;
   bool active_ = false;
   Eigen::Isometry3d entry_ = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d entry_reference_ = Eigen::Vector3d::Zero();  ///< walk reference at entry
   std::vector<std::vector<Eigen::Vector3d>> entry_points_;  // per needle, per shaft point
   WindowMetrics metrics_;
 };

@@ -83,6 +83,16 @@ struct GCodes {
   friend bool operator==(const GCodes&, const GCodes&) = default;
 };
 
+/// How the controller times the motion (docs/timing.md): the time law sim::TimingSink plans.
+struct TrajectorySpec {
+  /// Continuous-path blending between consecutive lines (G64-like); false: an exact stop at
+  /// every line end (G61-like).
+  bool continuous = true;
+  double ramp_time_s = 0.25;  ///< time to reach the programmed speed (until an axis caps it)
+  int look_ahead_lines = 64;  ///< lines the controller plans ahead
+  friend bool operator==(const TrajectorySpec&, const TrajectorySpec&) = default;
+};
+
 /// Most AFP tows a programme can address (M62/M63 P1..P64; the modal tow mask is 64 bits).
 inline constexpr int kMaxTows = 64;
 
@@ -131,6 +141,7 @@ struct Dialect {
   GCodes g;
   MCodes m;
   std::vector<ToolEntry> tools = {{1, "rs535"}, {2, "rs566"}, {3, "afp"}};
+  TrajectorySpec trajectory;
 
   /// The built-in dialect, equal to models/dialect/default.yaml.
   static const Dialect& Default();

@@ -37,6 +37,10 @@ enum class LimitKey : int {
   kSingularityA5MinDeg,
   kJointSpeedMaxFraction,
   kJointSpeedWarningPct,
+  kAccelerationMaxFraction,  ///< kin.acceleration max_fraction
+  kTorqueMaxFraction,        ///< kin.torque max_fraction
+  kTorqueWarningPct,         ///< kin.torque warning_pct
+  kPayloadMaxFraction,       ///< kin.payload max_fraction
   kSyncErrorMm,
   kSyncChordAllowancePct,
   kClearanceWarningMm,
@@ -54,6 +58,8 @@ enum class LimitKey : int {
   kAfpCompactionMaxLeanDeg,
   kAfpCoverageMaxBarePct,  ///< afp.coverage max_bare_pct
   kAfpCoverageMaxDoubledPct,
+  kTrackingErrorMm,  ///< dyn.tracking error_mm (verify --dynamics)
+  kTrackingWarningMm,
   kCount
 };
 inline constexpr std::size_t kLimitKeyCount = static_cast<std::size_t>(LimitKey::kCount);

@@ -51,6 +51,7 @@ struct CollisionOptions {
   bool naive_baseline = false;
 };
 
+class MujocoCell;      // mujoco_cell.h
 class CollisionModel;  // immutable: bodies, geometry, pair filter (sim/src/detail/)
 class CollisionData;   // one caller's per-query state
 
@@ -67,6 +68,10 @@ class CollisionWorld {
   /// it before other threads query (FCL rewrites each shared geometry's local box, with the
   /// same values, when it makes an object).
   std::unique_ptr<CollisionWorld> Share() const;
+  /// Takes the link frames and the part's pose from MuJoCo's kinematics of the cell (the
+  /// executor's, kinematic mode) instead of the URDF forward kinematics; null: the URDF.
+  /// `kinematics` must outlive the world's queries.
+  void UseKinematics(MujocoCell* kinematics);
   /// Checks the cell at joints `q` (model order).
   CollisionResult Check(const JointVector& q, const CollisionOptions& options);
   /// Largest distance any point of a moving body travels between `a` and `b` (metres); the

@@ -13,6 +13,7 @@
 #include "stitchsim/program/reader.h"
 #include "stitchsim/sim/cell.h"
 #include "stitchsim/sim/collision.h"
+#include "stitchsim/sim/mujoco_cell.h"
 #include "stitchsim/sim/trace.h"
 #include "stitchsim/trace/trace.h"
 
@@ -57,6 +58,14 @@ struct ExecuteOptions {
   /// A programme that ends without the programme end code (M30) was cut short:
   /// `exec-missing-program-end` at the last line read.
   bool require_program_end = true;
+  /// The cell as MuJoCo runs it (kinematic mode): at every sample with solved joints the
+  /// executor sets MuJoCo's qpos to them and takes the tool pose the rules read from MuJoCo's
+  /// kinematics (the collision world takes its link frames from the same state, see
+  /// CollisionWorld::UseKinematics). Null: the URDF forward kinematics alone (tests).
+  MujocoCell* mujoco = nullptr;
+  /// Solve the joints at every sample, the fine in-preform grid and the needle events too
+  /// (the dynamic mode needs a joint reference there); false: line ends and the coarse grid.
+  bool solve_every_sample = false;
 };
 
 /// The head's speeds and the mounted head from `scene`; no collision world.

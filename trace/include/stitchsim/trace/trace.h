@@ -23,6 +23,24 @@ struct CellDescription {
   JointVector lower_limits = JointVector::Zero();    ///< m (rail), rad
   JointVector upper_limits = JointVector::Zero();    ///< m (rail), rad
   JointVector max_velocities = JointVector::Zero();  ///< m/s (rail), rad/s
+  /// Acceleration limits (m/s^2, rad/s^2) and torque/force limits (N, N m) the producer's
+  /// time law and inverse dynamics used; 0 = the model gives none (kin.acceleration and
+  /// kin.torque skip that joint).
+  JointVector max_accelerations = JointVector::Zero();
+  JointVector max_efforts = JointVector::Zero();
+  /// The arm's load diagram (kin.payload): rated payload (kg, 0 = none given) and the centre
+  /// of mass distances from the flange it is rated at (m): along the flange z, off that axis;
+  /// and the distance from the a5 axis to the flange face (m), the lever of the a5 moment.
+  double payload_rated_kg = 0.0;
+  double payload_rated_lz_m = 0.0;
+  double payload_rated_lxy_m = 0.0;
+  double wrist_to_flange_m = 0.0;
+  /// The trace's samples carry the timed trajectory (TraceSample::has_timing); false for a
+  /// producer without a time law.
+  bool timed = false;
+  /// The trace is of a dynamic run (`verify --dynamics`): tool_part is where the arm's
+  /// physics put the tool, and samples carry the tracking error.
+  bool dynamic = false;
   /// The executor queried a collision world at every sample with usable joints (below);
   /// false under `--no-collision` (the collision.* rules do not run).
   bool collision_checked = false;
@@ -92,6 +110,20 @@ struct TraceSample {
   ArmConfiguration configuration;
   /// Contacts and clearance at `joints` (collision.* rules).
   SampleCollision collision;
+  /// The timed trajectory (sim::TimingSink, the controller's time law): when set, `timed_s` is
+  /// the time on it since the first line; with joints, the joint velocities (m/s, rad/s),
+  /// accelerations (m/s^2, rad/s^2) and the torques/forces MuJoCo's inverse dynamics needs to
+  /// move the cell so (N m, N for the rail; gravity, inertia, Coriolis, joint friction).
+  bool has_timing = false;
+  double timed_s = 0.0;
+  JointVector joint_velocities = JointVector::Zero();
+  JointVector joint_accelerations = JointVector::Zero();
+  JointVector joint_torques = JointVector::Zero();
+  /// Dynamic mode only (sim::DynamicsSink): how far the tool point (mm) and its axes (deg) lag
+  /// the command at this sample; tool_part is then the actual pose.
+  bool tracked = false;
+  double tracking_error_mm = 0.0;
+  double tracking_error_deg = 0.0;
 };
 
 /// The sample carries joints the arm can take (the IK-usable predicate, IkUsable).
@@ -106,6 +138,10 @@ struct LineRecord {
   double drive_from_mm = 0.0, drive_to_mm = 0.0;  ///< U
   double path_from_mm = 0.0, path_to_mm = 0.0;    ///< V
   double duration_s = 0.0;                        ///< at the programmed feed (or head speeds)
+  /// On the controller's time law (acceleration ramps, blending; sim::TimingSink), dwell
+  /// included; 0 when the trace is not timed. Filled before the line's samples reach a sink
+  /// behind the timing sink.
+  double timed_duration_s = 0.0;
   double feed_mm_per_min = 0.0;                   ///< modal F (0 if none)
   bool stitching = false;                         ///< M10 in force
   bool head_retracted = false;                    ///< M20 in force

@@ -18,7 +18,7 @@
 namespace stitchsim::trace {
 
 /// Version of the format this build writes and reads.
-inline constexpr std::uint32_t kTraceFormatVersion = 2;
+inline constexpr std::uint32_t kTraceFormatVersion = 3;
 
 /// FNV-1a (64 bit) of `bytes`: a file's fingerprint.
 std::uint64_t Fnv1a64(std::string_view bytes);
@@ -48,7 +48,8 @@ struct TraceFileHeader {
 struct TraceFileSummary {
   long lines = 0;  ///< programme lines read
   long moves = 0;  ///< motion lines executed
-  double cycle_time_s = 0.0;
+  double cycle_time_s = 0.0;        ///< at the programmed speeds (the simple estimate)
+  double cycle_time_timed_s = 0.0;  ///< on the controller's time law; 0 when not timed
 };
 
 /// Streams a trace into a file, written whole or not at all (common OutputFile): nothing

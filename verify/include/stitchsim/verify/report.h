@@ -79,7 +79,10 @@ struct Report {
   long moves = 0;       ///< motion lines executed
   long stitches = 0;    ///< stitch cycles executed
   double stitch_length_mm = 0.0;
-  double cycle_time_s = 0.0;         ///< simulated programme time
+  double cycle_time_s = 0.0;         ///< programme time at the programmed speeds (simple)
+  /// Programme time on the controller's time law (acceleration ramps, axis limits, blending;
+  /// docs/timing.md); 0 when the run was not timed.
+  double cycle_time_timed_s = 0.0;
   long errors = 0;                   ///< sum over rules
   long warnings = 0;                 ///< sum over rules
   std::vector<RuleSummary> rules;    ///< in registry order

@@ -40,6 +40,7 @@ class Verifier : public trace::TraceSink {
 
  private:
   void CloseWindow();
+  const Eigen::Isometry3d* WalkReference(const trace::TraceSample& s);
   void MarkStitch(long stitch, std::size_t errors_before, std::size_t warnings_before);
 
   RuleContext ctx_;
@@ -51,6 +52,11 @@ class Verifier : public trace::TraceSink {
   bool keep_marks_ = false;
   std::vector<StitchMark> marks_;
   long stitches_ = 0;
+  /// The current line's commanded poses (part frame, mm) and the last commanded pose made
+  /// from them (dynamic runs: the needle walk follows the command, the needles the arm).
+  Eigen::Isometry3d line_from_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d line_to_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d commanded_ = Eigen::Isometry3d::Identity();
 };
 
 }  // namespace stitchsim::verify

@@ -1,0 +1,265 @@
+// The programme executed on the MuJoCo model (S10): the MuJoCo and URDF routes agree on every
+// sample; the timed trajectory against hand-computed trapezoids; MuJoCo's inverse dynamics
+// against hand statics and Newton's law; kin.torque, kin.payload, kin.acceleration on the
+// right line; the dynamic mode's lag reaching the needle rules.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "stitchsim/planner/stitch_planner.h"
+#include "stitchsim/sim/dynamics.h"
+#include "stitchsim/sim/executor.h"
+#include "stitchsim/sim/mujoco_cell.h"
+#include "stitchsim/sim/timing.h"
+#include "stitchsim/verify/verifier.h"
+#include "verify_test_support.h"
+
+namespace stitchsim::verify {
+namespace {
+
+using testing::Load;
+using testing::Loaded;
+
+constexpr double kGravity = 9.81;
+
+// Every sample the pipeline hands on.
+struct Capture final : trace::TraceSink {
+  std::vector<trace::LineRecord> lines;
+  std::vector<trace::TraceSample> samples;
+  void OnLine(const trace::LineRecord& l) override { lines.push_back(l); }
+  void OnSample(const trace::TraceSample& s) override { samples.push_back(s); }
+};
+
+struct Tee final : trace::TraceSink {
+  trace::TraceSink& a;
+  trace::TraceSink& b;
+  Tee(trace::TraceSink& x, trace::TraceSink& y) : a(x), b(y) {}
+  void OnLine(const trace::LineRecord& l) override {
+    a.OnLine(l);
+    b.OnLine(l);
+  }
+  void OnSample(const trace::TraceSample& s) override {
+    a.OnSample(s);
+    b.OnSample(s);
+  }
+};
+
+struct Run {
+  bool ok = false;
+  std::string diagnostics;
+  Report report;
+  Capture capture;
+  double simple_time_s = 0.0;
+  double timed_s = 0.0;
+  sim::DynamicsFigures dynamics;
+  const RuleSummary* Rule(const std::string& id) const {
+    for (const auto& r : report.rules) {
+      if (r.id == id) return &r;
+    }
+    return nullptr;
+  }
+};
+
+// What `stitchsim verify` runs (app/src/verify_cmd.cpp), without collision: the executor on
+// MuJoCo's kinematics, the timing sink, with `dynamics` the physics, then the verifier.
+Run Execute(const Loaded& l, const std::string& text, double stitch_length_mm, bool dynamics) {
+  Run r;
+  const sim::CellSetup cell = sim::MakeCellSetup(*l.robot, *l.scene);
+  const process::ProcessModel model = process::MakeProcessModel(*l.scene, stitch_length_mm);
+  DiagnosticSink sink;
+  auto kin = sim::MujocoCell::Create(*l.scene, *l.robot, cell, sink);
+  EXPECT_NE(kin, nullptr) << (sink.Diagnostics().empty() ? "" : sink.Diagnostics()[0].message);
+  if (!kin) return r;
+  auto timing_cell = kin->Share(), physics = kin->Share(), poses = kin->Share();
+  trace::CellDescription description = sim::DescribeCell(*l.robot, nullptr);
+  description.timed = true;
+  description.dynamic = dynamics;
+  RuleContext ctx{l.scene.get(), &description, &model};
+  Verifier verifier(ctx, false);
+  Tee tee(verifier, r.capture);
+  sim::DynamicsSink physics_sink(*physics, *poses, tee);
+  sim::ExecuteOptions options = sim::ExecuteOptionsFor(*l.scene);
+  options.mujoco = kin.get();
+  options.solve_every_sample = dynamics;
+  sim::TimingOptions timing_options;
+  timing_options.settle_time_s = options.settle_time_s;
+  sim::TimingSink timing(*timing_cell, *l.robot, timing_options,
+                         dynamics ? static_cast<trace::TraceSink&>(physics_sink) : tee);
+  std::istringstream in(text);
+  const sim::ExecutionSummary run = sim::ExecuteProgram(
+      cell, model, program::Dialect::Default(), in, "test.nc", options, sink, timing);
+  timing.Finish();
+  for (const auto& d : sink.Diagnostics()) r.diagnostics += FormatDiagnostic(d) + "\n";
+  r.ok = run.ok;
+  r.simple_time_s = run.time_s;
+  r.timed_s = timing.CycleTime();
+  r.dynamics = physics_sink.Figures();
+  verifier.Finish(r.report);
+  return r;
+}
+
+std::string PlanCircle(const Loaded& l, planner::Mode mode) {
+  DiagnosticSink sink;
+  planner::StitchPlanOptions opt;
+  opt.mode = mode;
+  auto pl = planner::StitchPathPlanner::Create(*l.scene, *l.scene->FindPath("circle"), opt, sink);
+  EXPECT_TRUE(pl.has_value());
+  std::ostringstream out;
+  planner::WriteStitchProgram(*pl, *l.scene, "circle", program::Dialect::Default(), out);
+  return out.str();
+}
+
+// A straight move of the tool in the part frame of circle_8in (table mount: part axes are
+// the world's): from `from` to `to` (mm), tool z up, at `feed` mm/min.
+std::string Move(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double feed) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "G21 G90\nG1 X%.6f Y%.6f Z%.6f A0 B0 C0 F%.3f\nG1 X%.6f Y%.6f Z%.6f\nM30\n",
+                from.x(), from.y(), from.z(), feed, to.x(), to.y(), to.z());
+  return buf;
+}
+
+double MaxAbs(const std::vector<trace::TraceSample>& samples, int joint,
+              trace::JointVector trace::TraceSample::*field) {
+  double m = 0.0;
+  for (const auto& s : samples) {
+    if (s.has_timing && trace::JointsUsable(s)) m = std::max(m, std::abs((s.*field)[joint]));
+  }
+  return m;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Two routes to the frames: MuJoCo's kinematics (what the executor now uses) and the URDF FK.
+
+TEST(dynamics, MujocoAndUrdfRoutesAgreeOnEverySampleOfTheCircle) {
+  const Loaded l = Load("circle_8in");
+  const Run r = Execute(l, PlanCircle(l, planner::Mode::kDecoupled), 5.0, true);
+  ASSERT_TRUE(r.ok) << r.diagnostics;
+  const sim::CellSetup cell = sim::MakeCellSetup(*l.robot, *l.scene);
+  DiagnosticSink sink;
+  auto mj = sim::MujocoCell::Create(*l.scene, *l.robot, cell, sink);
+  ASSERT_NE(mj, nullptr);
+  long checked = 0;
+  double worst_m = 0.0, worst_rad = 0.0;
+  for (const auto& s : r.capture.samples) {
+    if (!trace::JointsUsable(s)) continue;
+    mj->SetJoints(s.joints);
+    const Eigen::Isometry3d urdf = sim::ToolPoseInPart(cell, s.joints);
+    const Eigen::Isometry3d mujoco = mj->ToolInPartMm();
+    worst_m = std::max(worst_m, (urdf.translation() - mujoco.translation()).norm() / 1000.0);
+    worst_rad = std::max(worst_rad, Eigen::AngleAxisd(urdf.linear().transpose() * mujoco.linear())
+                                        .angle());
+    for (std::size_t k = 0; k < l.robot->links().size(); ++k) {
+      const Eigen::Isometry3d a = sim::LinkPose(*l.robot, s.joints, static_cast<int>(k));
+      const Eigen::Isometry3d b = mj->LinkWorld(static_cast<int>(k));
+      worst_m = std::max(worst_m, (a.translation() - b.translation()).norm());
+      worst_rad =
+          std::max(worst_rad, Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle());
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 1000);
+  EXPECT_LT(worst_m, 1e-9);
+  EXPECT_LT(worst_rad, 1e-9);
+  std::printf("MuJoCo vs URDF on %ld samples: %.3e m, %.3e rad\n", checked, worst_m, worst_rad);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The timed trajectory against hand-computed trapezoids: a move along the rail (part x =
+// world x on the table; the rail policy follows it, the arm stands still).
+
+TEST(dynamics, RailMoveIsTheHandTrapezoid) {
+  const Loaded l = Load("circle_8in");
+  // 1000 mm at 6000 mm/min: cruise 0.1 /s (10 s at the feed), ramp 0.25 s -> 0.4 /s^2 (the
+  // rail's 1 m/s^2 does not cap it): 0.25 s up, 9.75 s at speed, 0.25 s down.
+  const Run slow = Execute(l, Move({-500, 0, 0}, {500, 0, 0}, 6000.0), 5.0, false);
+  ASSERT_TRUE(slow.ok) << slow.diagnostics;
+  EXPECT_NEAR(slow.simple_time_s, 10.0, 1e-9);
+  EXPECT_NEAR(slow.timed_s, 10.25, 1e-9);
+  // At 60000 mm/min the rail's 1 m/s and 1 m/s^2 cap it: a triangle, 1 s up, 1 s down.
+  const Run fast = Execute(l, Move({-500, 0, 0}, {500, 0, 0}, 60000.0), 5.0, false);
+  ASSERT_TRUE(fast.ok) << fast.diagnostics;
+  EXPECT_NEAR(fast.simple_time_s, 1.0, 1e-9);
+  EXPECT_NEAR(fast.timed_s, 2.0, 1e-9);
+  EXPECT_NEAR(MaxAbs(fast.capture.samples, trace::kRailX, &trace::TraceSample::joint_velocities),
+              1.0, 0.03);  // the peak lies between grid samples 20 mm apart
+  EXPECT_NEAR(
+      MaxAbs(fast.capture.samples, trace::kRailX, &trace::TraceSample::joint_accelerations), 1.0,
+      1e-6);
+}
+
+// Newton on the rail: the carriage carries every link and the head, so the rail force is the
+// total moving mass (URDF inertials + head spec + the rail's armature) times the acceleration,
+// plus the viscous damping times the speed.
+TEST(dynamics, RailForceIsMassTimesAccelerationPlusDamping) {
+  const Loaded l = Load("circle_8in");
+  ASSERT_TRUE(l.scene->head.inertial.has_value());
+  double mass = l.scene->head.inertial->mass_kg;
+  bool on_carriage = false;
+  for (const auto& link : l.robot->links()) {
+    if (link.name == "carriage") on_carriage = true;
+    if (link.name == "table" || link.name == "rotator_base" || link.name == "rotator") continue;
+    if (on_carriage && link.inertial) mass += link.inertial->mass_kg;
+  }
+  const sim::CellSetup cell = sim::MakeCellSetup(*l.robot, *l.scene);
+  DiagnosticSink sink;
+  auto mj = sim::MujocoCell::Create(*l.scene, *l.robot, cell, sink);
+  ASSERT_NE(mj, nullptr);
+  const double armature = mj->Armature(trace::kRailX);
+  const double damping = l.robot->dampings()[trace::kRailX];
+  const Run fast = Execute(l, Move({-500, 0, 0}, {500, 0, 0}, 60000.0), 5.0, false);
+  ASSERT_TRUE(fast.ok) << fast.diagnostics;
+  int checked = 0;
+  for (const auto& s : fast.capture.samples) {
+    if (!s.has_timing || !trace::JointsUsable(s)) continue;
+    const double v = s.joint_velocities[trace::kRailX], a = s.joint_accelerations[trace::kRailX];
+    EXPECT_NEAR(s.joint_torques[trace::kRailX], (mass + armature) * a + damping * v,
+                1e-6 * (mass + armature)) << "line fraction " << s.line_fraction;
+    ++checked;
+  }
+  EXPECT_GT(checked, 40);
+  std::printf("rail: moving mass %.1f kg + armature %.1f kg, damping %.1f N s/m\n", mass,
+              armature, damping);
+}
+
+// Hand statics: at rest, a2 holds the moment of every mass beyond it about its axis; the URDF
+// FK places each centre of mass (and the head spec's), MuJoCo's mj_inverse must agree.
+TEST(dynamics, HoldingTorqueIsTheHandStaticsOfTheUrdfMasses) {
+  const Loaded l = Load("circle_8in");
+  const sim::CellSetup cell = sim::MakeCellSetup(*l.robot, *l.scene);
+  DiagnosticSink sink;
+  auto mj = sim::MujocoCell::Create(*l.scene, *l.robot, cell, sink);
+  ASSERT_NE(mj, nullptr);
+  const sim::RobotModel& robot = *l.robot;
+  const trace::JointVector zero = trace::JointVector::Zero();
+  for (const trace::JointVector& q : {sim::HomeJoints(robot, 3.0), trace::JointVector(zero)}) {
+    const trace::JointVector tau = mj->InverseDynamics(q, zero, zero);
+    for (int j : {trace::kA2, trace::kA3, trace::kA5}) {
+      const sim::JointInfo& joint = robot.joint(j);
+      const Eigen::Isometry3d frame = sim::LinkPose(robot, q, joint.child_link_index);
+      const Eigen::Vector3d axis = frame.linear() * joint.axis, at = frame.translation();
+      const Eigen::Vector3d g(0, 0, -kGravity);
+      double hand = 0.0;
+      // Every link whose chain passes through this joint's child, and the head on the flange.
+      for (std::size_t k = 0; k < robot.links().size(); ++k) {
+        const auto& chain = robot.ChainTo(static_cast<int>(k));
+        if (std::find(chain.begin(), chain.end(), joint.child_link_index) == chain.end()) continue;
+        const auto& in = robot.links()[k].inertial;
+        if (!in) continue;
+        const Eigen::Vector3d c = sim::LinkPose(robot, q, static_cast<int>(k)) * in->com_m;
+        hand -= axis.dot((c - at).cross(in->mass_kg * g));
+      }
+      const auto& head = *l.scene->head.inertial;
+      const Eigen::Vector3d c = sim::FlangePose(robot, q) * head.com_m;
+      hand -= axis.dot((c - at).cross(head.mass_kg * g));
+      EXPECT_NEAR(tau[j], hand, 1e-6 * std::max(1.0, std::abs(hand))) << joint.name;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace stitchsim::verify

@@ -1,0 +1,205 @@
+// The rules of the timed trajectory and the dynamic run: joint accelerations and torques
+// (kin.acceleration, kin.torque), the head against the arm's load diagram (kin.payload) and the
+// servo's tracking error (dyn.tracking). docs/timing.md.
+#include <cmath>
+#include <cstdio>
+
+#include "stitchsim/verify/rule.h"
+
+namespace stitchsim::verify {
+namespace {
+
+using scene::LimitKey;
+
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+std::string Fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
+  char buf[256];
+  std::snprintf(buf, sizeof(buf), format, a, b, c);
+  return buf;
+}
+
+// Percent of a per-joint limit at each sample with timed joints; the worst joint is the subject.
+class JointLoadRule : public Rule {
+ public:
+  JointLoadRule(std::string id, std::string description, const trace::CellDescription* cell,
+                const trace::JointVector& limits, const char* quantity)
+      : Rule(std::move(id), std::move(description), "%"),
+        cell_(cell),
+        limits_(limits),
+        quantity_(quantity) {}
+  void OnSample(const trace::TraceSample& s) override {
+    if (!s.has_timing || !trace::JointsUsable(s)) return;
+    const trace::JointVector& v = Values(s);
+    double worst = 0.0;
+    int joint = -1;
+    for (int j = 0; j < trace::kNumJoints; ++j) {
+      if (!(limits_[j] > 0.0)) continue;
+      const double pct = std::abs(v[j]) / limits_[j] * 100.0;
+      if (joint < 0 || pct > worst) {
+        worst = pct;
+        joint = j;
+      }
+    }
+    if (joint < 0) return;
+    const std::string& name = cell_->joint_names[static_cast<std::size_t>(joint)];
+    const bool rail = joint == trace::kRailX;
+    CheckUpper(
+        worst, s.source_line, s.stitch, name,
+        [&] {
+          return "joint " + name + " " + quantity_ + " " + Detail(v[joint], limits_[joint], rail) +
+                 " (of its limit)";
+        },
+        &s);
+  }
+
+ protected:
+  virtual const trace::JointVector& Values(const trace::TraceSample& s) const = 0;
+  virtual std::string Detail(double value, double limit, bool rail) const = 0;
+
+ private:
+  const trace::CellDescription* cell_;
+  trace::JointVector limits_;
+  std::string quantity_;
+};
+
+class AccelerationRule final : public JointLoadRule {
+ public:
+  explicit AccelerationRule(const RuleContext& ctx)
+      : JointLoadRule("kin.acceleration",
+                      "joint acceleration on the timed trajectory against the URDF's limit",
+                      ctx.cell, ctx.cell->max_accelerations, "acceleration") {
+    summary_.error_limit = 100.0 * ctx.scene->limits.Value(LimitKey::kAccelerationMaxFraction);
+  }
+
+ protected:
+  const trace::JointVector& Values(const trace::TraceSample& s) const override {
+    return s.joint_accelerations;
+  }
+  std::string Detail(double v, double limit, bool rail) const override {
+    return rail ? Fmt("%.3g m/s^2, limit %.3g", std::abs(v), limit)
+                : Fmt("%.3g deg/s^2, limit %.3g", std::abs(v) * kRadToDeg, limit * kRadToDeg);
+  }
+};
+
+class TorqueRule final : public JointLoadRule {
+ public:
+  explicit TorqueRule(const RuleContext& ctx)
+      : JointLoadRule("kin.torque",
+                      "joint torque (rail force) the timed trajectory needs, by MuJoCo's inverse "
+                      "dynamics, against the URDF effort limit",
+                      ctx.cell, ctx.cell->max_efforts, "torque") {
+    summary_.error_limit = 100.0 * ctx.scene->limits.Value(LimitKey::kTorqueMaxFraction);
+    summary_.warning_limit = ctx.scene->limits.Get(LimitKey::kTorqueWarningPct);
+  }
+
+ protected:
+  const trace::JointVector& Values(const trace::TraceSample& s) const override {
+    return s.joint_torques;
+  }
+  std::string Detail(double v, double limit, bool rail) const override {
+    return rail ? Fmt("%.4g N, limit %.4g N", std::abs(v), limit)
+                : Fmt("%.4g N m, limit %.4g N m", std::abs(v), limit);
+  }
+};
+
+// The head on the flange against the load diagram: its mass, its moment about a5 (lever from
+// the a5 axis to the centre of mass) and about a6 (lever off the flange axis), each against
+// the rated payload's at its rated centre of mass. Checked once, on the first motion line.
+class PayloadRule final : public Rule {
+ public:
+  explicit PayloadRule(const RuleContext& ctx)
+      : Rule("kin.payload",
+             "head mass and centre of mass against the arm's load diagram (mass, moments about "
+             "a5 and a6)",
+             "%"),
+        ctx_(ctx) {
+    summary_.error_limit = 100.0 * ctx.scene->limits.Value(LimitKey::kPayloadMaxFraction);
+  }
+  void OnLine(const trace::LineRecord& l) override {
+    if (line_ == 0) line_ = l.source_line;
+  }
+  void Finish(const RuleContext&) override {
+    if (line_ == 0) return;
+    const trace::CellDescription& c = *ctx_.cell;
+    const scene::HeadInertial& h = *ctx_.scene->head.inertial;
+    const double lz = h.com_m.z(), lxy = std::hypot(h.com_m.x(), h.com_m.y());
+    const auto a5_lever = [&](double z, double xy) {
+      return std::hypot(c.wrist_to_flange_m + z, xy);
+    };
+    struct Part {
+      const char* subject;
+      double pct;
+    };
+    const Part parts[3] = {
+        {"mass", h.mass_kg / c.payload_rated_kg * 100.0},
+        {"a5 moment", h.mass_kg * a5_lever(lz, lxy) /
+                          (c.payload_rated_kg * a5_lever(c.payload_rated_lz_m,
+                                                         c.payload_rated_lxy_m)) *
+                          100.0},
+        {"a6 moment", c.payload_rated_lxy_m > 0.0
+                          ? h.mass_kg * lxy / (c.payload_rated_kg * c.payload_rated_lxy_m) * 100.0
+                          : 0.0},
+    };
+    const Part* worst = &parts[0];
+    for (const Part& p : parts) {
+      if (p.pct > worst->pct) worst = &p;
+    }
+    const std::string head = ctx_.scene->head.name;
+    CheckUpper(
+        worst->pct, line_, 0, worst->subject,
+        [&] {
+          return "head '" + head + "' (" +
+                 Fmt("%.4g kg, centre of mass %.3g m along and %.3g m off the flange axis", h.mass_kg,
+                     lz, lxy) +
+                 ") against the load diagram (" +
+                 Fmt("rated %.4g kg at %.3g m, %.3g m", c.payload_rated_kg, c.payload_rated_lz_m,
+                     c.payload_rated_lxy_m) +
+                 "): " + worst->subject;
+        },
+        nullptr);
+  }
+
+ private:
+  const RuleContext& ctx_;
+  int line_ = 0;
+};
+
+class TrackingRule final : public Rule {
+ public:
+  explicit TrackingRule(const RuleContext& ctx)
+      : Rule("dyn.tracking",
+             "tool point lag behind its command while the servos track the timed trajectory "
+             "(verify --dynamics)",
+             "mm") {
+    summary_.error_limit = ctx.scene->limits.Get(LimitKey::kTrackingErrorMm);
+    summary_.warning_limit = ctx.scene->limits.Get(LimitKey::kTrackingWarningMm);
+  }
+  void OnSample(const trace::TraceSample& s) override {
+    if (!s.tracked) return;
+    CheckUpper(
+        s.tracking_error_mm, s.source_line, s.stitch, "tool point",
+        [&] {
+          return "tool point lag behind its command (" + Fmt("%.3g deg", s.tracking_error_deg) +
+                 " in orientation)";
+        },
+        &s);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Rule> MakeAccelerationRule(const RuleContext& ctx) {
+  return std::make_unique<AccelerationRule>(ctx);
+}
+std::unique_ptr<Rule> MakeTorqueRule(const RuleContext& ctx) {
+  return std::make_unique<TorqueRule>(ctx);
+}
+std::unique_ptr<Rule> MakePayloadRule(const RuleContext& ctx) {
+  return std::make_unique<PayloadRule>(ctx);
+}
+std::unique_ptr<Rule> MakeTrackingRule(const RuleContext& ctx) {
+  return std::make_unique<TrackingRule>(ctx);
+}
+
+}  // namespace stitchsim::verify
