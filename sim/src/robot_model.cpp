@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "detail/opw.h"
+#include "detail/urdf_dynamics.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/sim/kinematics.h"
 
@@ -30,6 +31,7 @@ struct XmlLines {
   int robot = 0;
   std::map<std::string, int, std::less<>> joint;
   std::map<std::string, int, std::less<>> link;
+  detail::UrdfExtensions extensions;  // what urdfdom drops
 };
 
 /// urdfdom reports through console_bridge; while parsing, collect its messages instead of
@@ -153,6 +155,7 @@ class RobotModelBuilder {
     lines_.robot = robot->Row();
     for (const TiXmlElement* e = robot->FirstChildElement(); e != nullptr;
          e = e->NextSiblingElement()) {
+      detail::CollectUrdfExtensions(*e, lines_.extensions);
       const char* name = e->Attribute("name");
       if (name == nullptr) continue;
       if (e->ValueStr() == "joint") lines_.joint.emplace(name, e->Row());
@@ -203,6 +206,9 @@ class RobotModelBuilder {
       const urdf::LinkConstSharedPtr& link = queue[head];
       LinkInfo info;
       info.name = link->name;
+      const auto line = lines_.link.find(link->name);
+      info.inertial =
+          detail::ReadLinkInertial(*link, At(line == lines_.link.end() ? 0 : line->second), sink_);
       if (const urdf::JointConstSharedPtr& joint = link->parent_joint; joint) {
         info.parent_joint = joint->name;
         info.parent_link = model_.LinkIndex(joint->parent_link_name);
@@ -219,6 +225,7 @@ class RobotModelBuilder {
                         std::string(kJointNames[static_cast<std::size_t>(i)]) + "'");
       }
     }
+    model_.payload_rating_ = detail::ReadPayloadRating(lines_.extensions, file_, sink_);
     model_.flange_link_ = RequireLink(kFlangeLinkName);
     model_.rotator_link_ = RequireLink(kRotatorLinkName);
     model_.chains_.resize(model_.links_.size());
@@ -274,6 +281,12 @@ class RobotModelBuilder {
       info.axis = axis.normalized();
     }
 
+    const auto acceleration = lines_.extensions.joint_acceleration.find(joint.name);
+    detail::ReadJointDynamics(joint,
+                              acceleration == lines_.extensions.joint_acceleration.end()
+                                  ? nullptr
+                                  : &acceleration->second,
+                              At(line), sink_, info);
     if (!joint.limits) {
       sink_.Error("urdf-bad-limits", At(line), "joint '" + joint.name + "' has no <limit>");
       return index;
@@ -324,6 +337,9 @@ class RobotModelBuilder {
       model_.lower_(static_cast<Eigen::Index>(index)) = info.lower;
       model_.upper_(static_cast<Eigen::Index>(index)) = info.upper;
       model_.max_velocity_(static_cast<Eigen::Index>(index)) = info.max_velocity;
+      model_.effort_(static_cast<Eigen::Index>(index)) = info.effort;
+      model_.max_acceleration_(static_cast<Eigen::Index>(index)) = info.max_acceleration;
+      model_.damping_(static_cast<Eigen::Index>(index)) = info.damping;
     }
     model_.arm_mount_link_ = model_.LinkIndex(model_.joint(kA1).parent_link);
     return true;

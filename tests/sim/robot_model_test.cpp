@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "sim_test_support.h"
 #include "stitchsim/common/files.h"
@@ -111,6 +112,58 @@ TEST_F(sim_robot_model, ArmBaseSitsOnTheA1Axis) {
     EXPECT_LT((base.translation() - Eigen::Vector3d(0.7 + rail, 0, 0.85)).norm(), 1e-12);
     EXPECT_LT((base.linear().col(2) - Eigen::Vector3d::UnitZ()).norm(), 1e-12);
     EXPECT_LT((base.linear().col(0) - Eigen::Vector3d::UnitY()).norm(), 1e-12);
+  }
+}
+
+TEST_F(sim_robot_model, DynamicsReadBack) {
+  EXPECT_DOUBLE_EQ(model().efforts()(kRailX), 7400.0);
+  EXPECT_DOUBLE_EQ(model().efforts()(kA2), 78100.0);
+  EXPECT_DOUBLE_EQ(model().joint(kA6).effort, 1040.0);
+  EXPECT_DOUBLE_EQ(model().dampings()(kA4), 42.6);
+  EXPECT_DOUBLE_EQ(model().joint(kRotator).damping, 260.0);
+  EXPECT_DOUBLE_EQ(model().max_accelerations()(kRailX), 1.0);
+  for (int i = 0; i < kNumJoints; ++i) {
+    SCOPED_TRACE(model().joint(i).name);
+    const double v = model().max_velocities()(i);
+    // The documented rules: arm axes reach top speed in 0.5 s, the rotator 30 deg/s in 1 s;
+    // damping * top speed = 5 % of the effort (3 significant digits, so within 1 %).
+    if (i >= kA1 && i <= kA6) {
+      EXPECT_NEAR(model().max_accelerations()(i), v / 0.5, 1e-12);
+    }
+    if (i == kRotator) {
+      EXPECT_NEAR(model().max_accelerations()(i), 30.0 * kPi / 180.0, 1e-12);
+    }
+    EXPECT_GT(model().efforts()(i), 0.0);
+    EXPECT_NEAR(model().dampings()(i) * v, 0.05 * model().efforts()(i),
+                0.01 * 0.05 * model().efforts()(i));
+  }
+  const PayloadRating& rating = model().payload_rating();
+  EXPECT_DOUBLE_EQ(rating.mass_kg, 420.0);
+  EXPECT_DOUBLE_EQ(rating.lz_m, 0.35);
+  EXPECT_DOUBLE_EQ(rating.lxy_m, 0.15);
+
+  const LinkInfo& link_1 = model().links()[static_cast<std::size_t>(model().LinkIndex("link_1"))];
+  ASSERT_TRUE(link_1.inertial.has_value());
+  EXPECT_DOUBLE_EQ(link_1.inertial->mass_kg, 1000.0);
+  EXPECT_LT((link_1.inertial->com_m - Eigen::Vector3d(0.135, 0, -0.216)).norm(), 1e-15);
+  Eigen::Matrix3d expected;
+  expected << 104.4, 0, -17.78, 0, 214.5, 0, -17.78, 0, 182.5;
+  EXPECT_LT((link_1.inertial->inertia_kg_m2 - expected).norm(), 1e-12);
+  double arm_kg = 0.0;
+  for (const char* name :
+       {"base_link", "link_1", "link_2", "link_3", "link_4", "link_5", "link_6"}) {
+    const LinkInfo& link = model().links()[static_cast<std::size_t>(model().LinkIndex(name))];
+    ASSERT_TRUE(link.inertial.has_value()) << name;
+    arm_kg += link.inertial->mass_kg;
+  }
+  EXPECT_NEAR(arm_kg, 2515.0, 1e-9);  // the KR 420 R3330 class: about 2.5 t
+  for (const char* name : {"carriage", "rotator"}) {
+    EXPECT_TRUE(model().links()[static_cast<std::size_t>(model().LinkIndex(name))].inertial)
+        << name;
+  }
+  for (const char* name : {"world", "rail", "flange", "table", "rotator_base"}) {
+    EXPECT_FALSE(model().links()[static_cast<std::size_t>(model().LinkIndex(name))].inertial)
+        << name;
   }
 }
 
@@ -273,6 +326,107 @@ TEST(sim_robot_model_bad, ExtraMovableJoint) {
               "    <limit lower=\"0\" upper=\"1\" velocity=\"1\" effort=\"0\"/>");
   EXPECT_FALSE(ParseRobotModel(text, "cell.urdf", sink).has_value());
   EXPECT_TRUE(HasCode(sink, "urdf-unsupported-joint")) << FormatAll(sink);
+}
+
+// The cell text with every dynamics field removed: what URDFs written before them look like.
+std::string WithoutDynamics(std::string text) {
+  const auto erase_all = [&text](const std::string& open, const std::string& close) {
+    for (std::size_t at = text.find(open); at != std::string::npos; at = text.find(open, at)) {
+      const std::size_t end = text.find(close, at + open.size());
+      EXPECT_NE(end, std::string::npos) << open;
+      if (end == std::string::npos) return;
+      text.erase(at, end + close.size() - at);
+    }
+  };
+  erase_all("<inertial>\n", "</inertial>");  // not the mentions in comments
+  erase_all("<dynamics damping=\"", "/>");
+  erase_all(" acceleration=\"", "\"");
+  erase_all("<payload_rating ", "/>");
+  for (std::size_t at = text.find("effort=\""); at != std::string::npos;
+       at = text.find("effort=\"", at + 1)) {
+    text.replace(at, text.find('"', at + 8) + 1 - at, "effort=\"0\"");
+  }
+  return text;
+}
+
+TEST(sim_robot_model_bad, UrdfWithoutDynamicsStillLoads) {
+  DiagnosticSink sink;
+  const std::string text = WithoutDynamics(CellText());
+  ASSERT_EQ(text.find("<inertial>\n"), std::string::npos);
+  ASSERT_EQ(text.find("damping=\""), std::string::npos);
+  const std::optional<RobotModel> model = ParseRobotModel(text, "old.urdf", sink);
+  ASSERT_TRUE(model.has_value()) << FormatAll(sink);
+  EXPECT_TRUE(sink.Diagnostics().empty()) << FormatAll(sink);
+  EXPECT_TRUE(model->efforts().isZero());
+  EXPECT_TRUE(model->max_accelerations().isZero());
+  EXPECT_TRUE(model->dampings().isZero());
+  EXPECT_EQ(model->payload_rating().mass_kg, 0.0);
+  for (const LinkInfo& link : model->links()) EXPECT_FALSE(link.inertial.has_value()) << link.name;
+}
+
+TEST(sim_robot_model_bad, InertialOriginTurnsTheInertiaIntoLinkAxes) {
+  DiagnosticSink sink;
+  // The link_2 inertia given in axes turned 90 deg about z: ixx and iyy swap in the link frame.
+  const std::string text =
+      Replace(CellText(),
+              "<origin xyz=\"0.867 0 0\" rpy=\"0 0 0\"/>\n      <mass value=\"500\"/>\n"
+              "      <inertia ixx=\"17.64\" iyy=\"102.1\"",
+              "<origin xyz=\"0.867 0 0\" rpy=\"0 0 1.5707963267948966\"/>\n      <mass "
+              "value=\"500\"/>\n      <inertia ixx=\"102.1\" iyy=\"17.64\"");
+  const std::optional<RobotModel> model = ParseRobotModel(text, "cell.urdf", sink);
+  ASSERT_TRUE(model.has_value()) << FormatAll(sink);
+  const LinkInfo& link = model->links()[static_cast<std::size_t>(model->LinkIndex("link_2"))];
+  ASSERT_TRUE(link.inertial.has_value());
+  EXPECT_NEAR(link.inertial->inertia_kg_m2(0, 0), 17.64, 1e-12);
+  EXPECT_NEAR(link.inertial->inertia_kg_m2(1, 1), 102.1, 1e-12);
+  EXPECT_NEAR(link.inertial->inertia_kg_m2(0, 1), 0.0, 1e-12);
+  EXPECT_LT((link.inertial->com_m - Eigen::Vector3d(0.867, 0, 0)).norm(), 1e-15);
+}
+
+struct BadValue {
+  std::string from;
+  std::string to;
+  std::string code;
+  std::string element;  // the diagnostic points at this element's line
+  std::string says;     // the message contains this
+};
+
+TEST(sim_robot_model_bad, BadDynamicsValuesGiveTheirCodes) {
+  const std::string a2 = "<joint name=\"a2\"";
+  const std::string link_3 = "<link name=\"link_3\">";
+  const std::string rating = "<payload_rating ";
+  const std::vector<BadValue> cases = {
+      {"effort=\"78100\"", "effort=\"-1\"", "urdf-bad-limits", a2, ""},
+      {"<dynamics damping=\"2980\"/>", "<dynamics damping=\"-5\"/>", "urdf-bad-limits", a2, ""},
+      {"acceleration=\"2.6179938779914944\"", "acceleration=\"-1\"", "urdf-bad-limits", a2, ""},
+      {"acceleration=\"2.6179938779914944\"", "acceleration=\"fast\"", "urdf-bad-limits", a2, ""},
+      {"acceleration=\"2.6179938779914944\"", "acceleration=\"inf\"", "urdf-bad-limits", a2, ""},
+      {"<mass value=\"420\"/>", "<mass value=\"-420\"/>", "urdf-bad-inertial", link_3, ""},
+      {"<mass value=\"420\"/>", "<mass value=\"0\"/>", "urdf-bad-inertial", link_3, ""},
+      {"ixx=\"13.56\"", "ixx=\"-13.56\"", "urdf-bad-inertial", link_3, "positive definite"},
+      {"ixx=\"13.56\" iyy=\"81.89\" izz=\"80.35\" ixy=\"0\" ixz=\"4.928\"",
+       "ixx=\"1\" iyy=\"1\" izz=\"3\" ixy=\"0\" ixz=\"0\"", "urdf-bad-inertial", link_3,
+       "triangle inequality"},
+      {"ixz=\"4.928\"", "ixz=\"60\"", "urdf-bad-inertial", link_3, "positive definite"},
+      {"mass_kg=\"420\"", "mass_kg=\"-420\"", "urdf-bad-payload", rating, ""},
+      {"mass_kg=\"420\"", "mass_kg=\"0\"", "urdf-bad-payload", rating, ""},
+      {" lxy_m=\"0.15\"", "", "urdf-bad-payload", rating, ""},
+      {"lz_m=\"0.35\"", "lz_m=\"nan\"", "urdf-bad-payload", rating, ""},
+      {"lz_m=\"0.35\"", "lz_m=\"0.35\" lx_m=\"1\"", "urdf-bad-payload", rating, ""},
+      {"<link name=\"world\"/>", "<link name=\"world\"/>\n  <payload_rating mass_kg=\"1\"/>",
+       "urdf-bad-payload", "<payload_rating mass_kg=\"1\"/>", ""},
+  };
+  for (const BadValue& c : cases) {
+    SCOPED_TRACE(c.to);
+    DiagnosticSink sink;
+    const std::string text = Replace(CellText(), c.from, c.to);
+    EXPECT_FALSE(ParseRobotModel(text, "cell.urdf", sink).has_value());
+    const Diagnostic* d = Find(sink, c.code);
+    ASSERT_NE(d, nullptr) << FormatAll(sink);
+    EXPECT_EQ(d->location.line, LineOf(text, c.element)) << FormatAll(sink);
+    EXPECT_NE(d->message.find(c.says), std::string::npos) << d->message;
+    EXPECT_EQ(sink.ErrorCount(), 1u) << FormatAll(sink);
+  }
 }
 
 TEST(sim_robot_model_bad, CellTextParsesClean) {

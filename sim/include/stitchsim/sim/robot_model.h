@@ -44,10 +44,28 @@ struct JointInfo {
   int child_link_index = -1;                                 // index into RobotModel::links()
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  // parent link -> joint frame, q = 0
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // unit vector in the joint (= child) frame
-  double lower = 0.0;         // position limit: m (prismatic) or rad (revolute)
-  double upper = 0.0;         // position limit: m (prismatic) or rad (revolute)
-  double max_velocity = 0.0;  // URDF <limit velocity>: m/s or rad/s
-  int line = 0;               // 1-based line of the <joint> element in the URDF; 0 if unknown
+  double lower = 0.0;             // position limit: m (prismatic) or rad (revolute)
+  double upper = 0.0;             // position limit: m (prismatic) or rad (revolute)
+  double max_velocity = 0.0;      // URDF <limit velocity>: m/s or rad/s
+  double effort = 0.0;            ///< URDF <limit effort>: N (prismatic) or N m; 0 = not given
+  double max_acceleration = 0.0;  ///< <limit acceleration> (stitchsim extension): m/s^2 or
+                                  ///< rad/s^2; 0 = not given
+  double damping = 0.0;           ///< URDF <dynamics damping>: N s/m or N m s/rad; 0 = none
+  int line = 0;                   // 1-based line of the <joint> element in the URDF; 0 if unknown
+};
+
+/// A link's mass properties (URDF <inertial>), link frame.
+struct LinkInertial {
+  double mass_kg = 0.0;
+  Eigen::Vector3d com_m = Eigen::Vector3d::Zero();          ///< centre of mass, link frame
+  Eigen::Matrix3d inertia_kg_m2 = Eigen::Matrix3d::Zero();  ///< about the CoM, link axes
+};
+
+/// The arm's load diagram (URDF extension element <payload_rating>); mass 0 = not given.
+struct PayloadRating {
+  double mass_kg = 0.0;  ///< rated payload
+  double lz_m = 0.0;     ///< CoM distance along the flange z at the rated payload
+  double lxy_m = 0.0;    ///< CoM distance from the flange axis at the rated payload
 };
 
 /// One link. The world pose of a link is parent pose * origin * motion(q[joint]).
@@ -57,6 +75,7 @@ struct LinkInfo {
   std::string parent_joint;  // URDF name of the joint to the parent; empty for the root
   int joint = -1;            // JointIndex of that joint when movable; -1 when fixed or root
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  // parent link -> this link, q = 0
+  std::optional<LinkInertial> inertial;  ///< URDF <inertial>; absent when the URDF gives none
 };
 
 /// Ortho-parallel arm geometry with a spherical wrist (Brandstoetter, Angerer, Hofbaur 2014),
@@ -112,6 +131,14 @@ class RobotModel {
   const JointVector& lower_limits() const { return lower_; }
   const JointVector& upper_limits() const { return upper_; }
   const JointVector& max_velocities() const { return max_velocity_; }
+  /// Effort limits in model order: N for the rail, N m otherwise; 0 = not given.
+  const JointVector& efforts() const { return effort_; }
+  /// Acceleration limits in model order: m/s^2 for the rail, rad/s^2 otherwise; 0 = not given.
+  const JointVector& max_accelerations() const { return max_acceleration_; }
+  /// Viscous damping in model order: N s/m for the rail, N m s/rad otherwise; 0 = none.
+  const JointVector& dampings() const { return damping_; }
+  /// The arm's rated payload and load-diagram distances; mass 0 = not given.
+  const PayloadRating& payload_rating() const { return payload_rating_; }
 
  private:
   friend class RobotModelBuilder;
@@ -129,12 +156,17 @@ class RobotModel {
   JointVector lower_ = JointVector::Zero();
   JointVector upper_ = JointVector::Zero();
   JointVector max_velocity_ = JointVector::Zero();
+  JointVector effort_ = JointVector::Zero();
+  JointVector max_acceleration_ = JointVector::Zero();
+  JointVector damping_ = JointVector::Zero();
+  PayloadRating payload_rating_;
 };
 
 /// Loads and validates a URDF file. Problems are reported to `sink` with stable codes
 /// (urdf-missing-file, urdf-parse-error, urdf-missing-joint, urdf-missing-link,
 /// urdf-wrong-joint-type, urdf-unsupported-joint, urdf-bad-limits, urdf-bad-axis,
-/// urdf-bad-chain, urdf-not-opw) and give nullopt; never throws on bad input.
+/// urdf-bad-chain, urdf-not-opw, urdf-bad-inertial, urdf-bad-payload) and give nullopt; never
+/// throws on bad input.
 std::optional<RobotModel> LoadRobotModel(const std::filesystem::path& path, DiagnosticSink& sink);
 
 /// As LoadRobotModel, from URDF text; `file_label` names it in diagnostics.
