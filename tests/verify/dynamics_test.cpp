@@ -25,6 +25,11 @@ using testing::Load;
 using testing::Loaded;
 
 constexpr double kGravity = 9.81;
+// Tuned by the figures the tests print (docs/timing.md gives them).
+constexpr double kHeavyHeadKg = 900.0;
+constexpr double kFastFeed = 60000.0;  // mm/min
+constexpr double kSlowFeed = 6000.0;
+constexpr double kFastStitchRate = 1200.0;  // per minute, 4x the RS535's
 
 // Every sample the pipeline hands on.
 struct Capture final : trace::TraceSink {
@@ -48,7 +53,7 @@ struct Tee final : trace::TraceSink {
   }
 };
 
-struct Run {
+struct Outcome {
   bool ok = false;
   std::string diagnostics;
   Report report;
@@ -66,8 +71,8 @@ struct Run {
 
 // What `stitchsim verify` runs (app/src/verify_cmd.cpp), without collision: the executor on
 // MuJoCo's kinematics, the timing sink, with `dynamics` the physics, then the verifier.
-Run Execute(const Loaded& l, const std::string& text, double stitch_length_mm, bool dynamics) {
-  Run r;
+Outcome Execute(const Loaded& l, const std::string& text, double stitch_length_mm, bool dynamics) {
+  Outcome r;
   const sim::CellSetup cell = sim::MakeCellSetup(*l.robot, *l.scene);
   const process::ProcessModel model = process::MakeProcessModel(*l.scene, stitch_length_mm);
   DiagnosticSink sink;
@@ -123,6 +128,8 @@ std::string Move(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double 
   return buf;
 }
 
+double Worst(const RuleSummary* r) { return r != nullptr && r->worst_value ? *r->worst_value : -1.0; }
+
 double MaxAbs(const std::vector<trace::TraceSample>& samples, int joint,
               trace::JointVector trace::TraceSample::*field) {
   double m = 0.0;
@@ -137,7 +144,7 @@ double MaxAbs(const std::vector<trace::TraceSample>& samples, int joint,
 
 TEST(dynamics, MujocoAndUrdfRoutesAgreeOnEverySampleOfTheCircle) {
   const Loaded l = Load("circle_8in");
-  const Run r = Execute(l, PlanCircle(l, planner::Mode::kDecoupled), 5.0, true);
+  const Outcome r = Execute(l, PlanCircle(l, planner::Mode::kDecoupled), 5.0, true);
   ASSERT_TRUE(r.ok) << r.diagnostics;
   const sim::CellSetup cell = sim::MakeCellSetup(*l.robot, *l.scene);
   DiagnosticSink sink;
@@ -176,12 +183,12 @@ TEST(dynamics, RailMoveIsTheHandTrapezoid) {
   const Loaded l = Load("circle_8in");
   // 1000 mm at 6000 mm/min: cruise 0.1 /s (10 s at the feed), ramp 0.25 s -> 0.4 /s^2 (the
   // rail's 1 m/s^2 does not cap it): 0.25 s up, 9.75 s at speed, 0.25 s down.
-  const Run slow = Execute(l, Move({-500, 0, 0}, {500, 0, 0}, 6000.0), 5.0, false);
+  const Outcome slow = Execute(l, Move({-500, 0, 0}, {500, 0, 0}, 6000.0), 5.0, false);
   ASSERT_TRUE(slow.ok) << slow.diagnostics;
   EXPECT_NEAR(slow.simple_time_s, 10.0, 1e-9);
   EXPECT_NEAR(slow.timed_s, 10.25, 1e-9);
   // At 60000 mm/min the rail's 1 m/s and 1 m/s^2 cap it: a triangle, 1 s up, 1 s down.
-  const Run fast = Execute(l, Move({-500, 0, 0}, {500, 0, 0}, 60000.0), 5.0, false);
+  const Outcome fast = Execute(l, Move({-500, 0, 0}, {500, 0, 0}, 60000.0), 5.0, false);
   ASSERT_TRUE(fast.ok) << fast.diagnostics;
   EXPECT_NEAR(fast.simple_time_s, 1.0, 1e-9);
   EXPECT_NEAR(fast.timed_s, 2.0, 1e-9);
@@ -211,7 +218,7 @@ TEST(dynamics, RailForceIsMassTimesAccelerationPlusDamping) {
   ASSERT_NE(mj, nullptr);
   const double armature = mj->Armature(trace::kRailX);
   const double damping = l.robot->dampings()[trace::kRailX];
-  const Run fast = Execute(l, Move({-500, 0, 0}, {500, 0, 0}, 60000.0), 5.0, false);
+  const Outcome fast = Execute(l, Move({-500, 0, 0}, {500, 0, 0}, 60000.0), 5.0, false);
   ASSERT_TRUE(fast.ok) << fast.diagnostics;
   int checked = 0;
   for (const auto& s : fast.capture.samples) {
@@ -259,6 +266,112 @@ TEST(dynamics, HoldingTorqueIsTheHandStaticsOfTheUrdfMasses) {
       EXPECT_NEAR(tau[j], hand, 1e-6 * std::max(1.0, std::abs(hand))) << joint.name;
     }
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// kin.torque: a head heavier than the arm is rated for, moved fast near full reach (away from
+// and towards the rail at 2.2 to 3.0 m from its line), needs more than the joints can give on
+// the fast line; the same path slowly does not.
+
+const Eigen::Vector3d kNear(0, 400, 0), kFar(0, -400, 0);
+
+TEST(dynamics, TorqueFiresOnTheFastLineOfAHeavyHeadAndNotWhenSlow) {
+  Loaded l = Load("circle_8in");
+  l.scene->head.inertial->mass_kg = kHeavyHeadKg;
+  const Outcome fast = Execute(l, Move(kNear, kFar, kFastFeed), 5.0, false);
+  const Outcome slow = Execute(l, Move(kNear, kFar, kSlowFeed), 5.0, false);
+  ASSERT_TRUE(fast.ok && slow.ok) << fast.diagnostics << slow.diagnostics;
+  const RuleSummary* f = fast.Rule("kin.torque");
+  const RuleSummary* s = slow.Rule("kin.torque");
+  ASSERT_TRUE(f && s);
+  std::printf("heavy head: worst torque %.1f %% fast, %.1f %% slow\n", Worst(f), Worst(s));
+  ASSERT_GT(f->errors, 0);
+  EXPECT_EQ(f->findings.front().line, 3);  // the move; line 2 only places the tool
+  EXPECT_EQ(s->errors, 0);
+  // The head's own mass passes fast too.
+  const Loaded own = Load("circle_8in");
+  const Outcome rated = Execute(own, Move(kNear, kFar, kFastFeed), 5.0, false);
+  EXPECT_EQ(rated.Rule("kin.torque")->errors, 0) << Worst(rated.Rule("kin.torque"));
+}
+
+// kin.acceleration: the time law keeps every axis within its limit (the planner's promise,
+// checked on the trace); a scene that allows only half of it flags the fast line.
+TEST(dynamics, AccelerationStaysWithinTheLimitAndFiresOnTheFastLineWhenTightened) {
+  Loaded l = Load("circle_8in");
+  const Outcome fast = Execute(l, Move(kNear, kFar, kFastFeed), 5.0, false);
+  ASSERT_TRUE(fast.ok) << fast.diagnostics;
+  const RuleSummary* a = fast.Rule("kin.acceleration");
+  ASSERT_NE(a, nullptr);
+  EXPECT_EQ(a->errors, 0);
+  EXPECT_LE(Worst(a), 100.0 + 1e-6);
+  EXPECT_GT(Worst(a), 50.0);  // the fast line runs the arm hard
+  DiagnosticSink sink;
+  l.scene->limits.Set(scene::LimitKey::kAccelerationMaxFraction, 0.5);
+  const Outcome tight = Execute(l, Move(kNear, kFar, kFastFeed), 5.0, false);
+  ASSERT_GT(tight.Rule("kin.acceleration")->errors, 0);
+  EXPECT_EQ(tight.Rule("kin.acceleration")->findings.front().line, 3);
+  const Outcome slow = Execute(l, Move(kNear, kFar, kSlowFeed), 5.0, false);
+  EXPECT_EQ(slow.Rule("kin.acceleration")->errors, 0);
+}
+
+// kin.payload against the load diagram by hand: the larger of mass / rated, the a5 moment
+// (lever from the a5 axis) and the a6 moment (lever off the flange axis) over the rated ones.
+TEST(dynamics, PayloadIsTheLoadDiagramByHand) {
+  Loaded l = Load("circle_8in");
+  const sim::PayloadRating rating = l.robot->payload_rating();
+  ASSERT_GT(rating.mass_kg, 0.0);
+  const double c4 = l.robot->opw().c4_m;
+  const auto percent = [&](const scene::HeadInertial& h) {
+    const double lz = h.com_m.z(), lxy = std::hypot(h.com_m.x(), h.com_m.y());
+    const double a5 = std::hypot(c4 + lz, lxy) /
+                      std::hypot(c4 + rating.lz_m, rating.lxy_m);
+    const double a6 = rating.lxy_m > 0 ? lxy / rating.lxy_m : 0.0;
+    return 100.0 * h.mass_kg / rating.mass_kg * std::max({1.0, a5, a6});
+  };
+  const std::string text = Move(kNear, kFar, kSlowFeed);
+  const Outcome own = Execute(l, text, 5.0, false);
+  ASSERT_TRUE(own.ok) << own.diagnostics;
+  EXPECT_EQ(own.Rule("kin.payload")->errors, 0);
+  EXPECT_NEAR(Worst(own.Rule("kin.payload")), percent(*l.scene->head.inertial), 1e-9);
+  // The rated mass with its centre of mass 0.3 m further out than rated: the a5 moment breaks.
+  l.scene->head.inertial->mass_kg = rating.mass_kg;
+  l.scene->head.inertial->com_m = Eigen::Vector3d(rating.lxy_m, 0.0, rating.lz_m + 0.3);
+  const Outcome out = Execute(l, text, 5.0, false);
+  const RuleSummary* p = out.Rule("kin.payload");
+  ASSERT_GT(p->errors, 0);
+  EXPECT_NEAR(p->findings.front().value, percent(*l.scene->head.inertial), 1e-9);
+  EXPECT_EQ(p->findings.front().subject, "a5 moment");
+  EXPECT_EQ(p->findings.front().line, 2);  // the first motion line
+}
+
+// ---------------------------------------------------------------------------------------------
+// The dynamic mode on the decoupled 8 in circle: the servos lag; at a stitch rate well above
+// the head's the lag breaks the side-force limit, which kinematic mode cannot see.
+
+TEST(dynamics, DynamicModeLagReachesTheNeedleRules) {
+  Loaded l = Load("circle_8in");
+  const Outcome normal = Execute(l, PlanCircle(l, planner::Mode::kDecoupled), 5.0, true);
+  ASSERT_TRUE(normal.ok) << normal.diagnostics;
+  const RuleSummary* tracking = normal.Rule("dyn.tracking");
+  ASSERT_NE(tracking, nullptr);
+  EXPECT_GT(Worst(tracking), 0.0);
+  EXPECT_GT(normal.dynamics.samples, 1000);
+  std::printf("circle at %.0f/min: lag %.4f mm, side force %.4f mm (dynamic)\n",
+              l.scene->head.stitch.stitch_rate_per_min, Worst(tracking),
+              Worst(normal.Rule("needle.side_force")));
+  l.scene->head.stitch.stitch_rate_per_min = kFastStitchRate;
+  const std::string fast_text = PlanCircle(l, planner::Mode::kDecoupled);
+  const Outcome kinematic = Execute(l, fast_text, 5.0, false);
+  const Outcome dynamic = Execute(l, fast_text, 5.0, true);
+  ASSERT_TRUE(kinematic.ok && dynamic.ok);
+  const RuleSummary* k = kinematic.Rule("needle.side_force");
+  const RuleSummary* d = dynamic.Rule("needle.side_force");
+  std::printf("circle at %.0f/min: side force %.4f mm kinematic, %.4f mm dynamic (lag %.4f)\n",
+              kFastStitchRate, Worst(k), Worst(d),
+              Worst(dynamic.Rule("dyn.tracking")));
+  EXPECT_EQ(k->errors, 0);
+  EXPECT_GT(d->errors, 0);
+  EXPECT_EQ(kinematic.Rule("dyn.tracking"), nullptr);  // not a dynamic run
 }
 
 }  // namespace
