@@ -81,6 +81,13 @@ struct AllowedContact {
   bool Matches(const std::string& geom_name) const;
 };
 
+/// The head's mass properties (head spec `inertial:`), flange frame.
+struct HeadInertial {
+  double mass_kg = 0.0;
+  Eigen::Vector3d com_m = Eigen::Vector3d::Zero();          ///< flange frame, metres
+  Eigen::Matrix3d inertia_kg_m2 = Eigen::Matrix3d::Zero();  ///< about the CoM, flange axes
+};
+
 struct HeadSpec {
   std::filesystem::path file;
   std::string name;
@@ -96,6 +103,7 @@ struct HeadSpec {
   std::optional<HeadEnvelope> envelope;          ///< absent: the head spec gives none
   RuleLimits limits;                             ///< the spec's `limits`, over the table's defaults
   std::vector<AllowedContact> allowed_contacts;  ///< absent: none (every contact counts)
+  std::optional<HeadInertial> inertial;          ///< absent: the head spec gives none
   bool IsStitching() const { return kind != HeadKind::kAfp; }
 };
 
