@@ -1,10 +1,13 @@
 #include "stitchsim/scene/head_spec.h"
 
+#include <algorithm>
 #include <cmath>
+#include <initializer_list>
 
 #include "limit_map.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/common/units.h"
+#include "stitchsim/geom/inertia.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/scene/yaml_reader.h"
 
@@ -250,6 +253,74 @@ void ReadAllowedContacts(detail::YamlReader& r, const YAML::Node& root, HeadSpec
   }
 }
 
+// One number of the `inertial:` block; every problem with it is reported as head-bad-inertial.
+std::optional<double> InertialNumber(detail::YamlReader& r, const YAML::Node& node,
+                                     std::string_view what) {
+  DiagnosticSink scratch;
+  detail::YamlReader quiet(r.File(), scratch, r.Prefix());
+  const std::optional<double> value = quiet.Number(node, what);
+  for (const Diagnostic& d : scratch.Diagnostics()) {
+    r.Sink().Error(r.Prefix() + "-bad-inertial", d.location, d.message);
+  }
+  return value;
+}
+
+// A list of `sizes` numbers of the `inertial:` block (one of the counts given).
+std::optional<Eigen::VectorXd> InertialList(detail::YamlReader& r, const YAML::Node& node,
+                                            std::initializer_list<int> sizes, std::string_view what,
+                                            std::string_view expect) {
+  const int n = node.IsSequence() ? static_cast<int>(node.size()) : -1;
+  if (std::find(sizes.begin(), sizes.end(), n) == sizes.end()) {
+    r.Error(node, "bad-inertial", std::string(what) + " must be a list of " + std::string(expect));
+    return std::nullopt;
+  }
+  Eigen::VectorXd out(n);
+  bool ok = true;
+  for (int i = 0; i < n; ++i) {
+    const std::optional<double> v = InertialNumber(r, node[static_cast<std::size_t>(i)], what);
+    ok = ok && v.has_value();
+    if (v) out(i) = *v;
+  }
+  return ok ? std::optional<Eigen::VectorXd>(out) : std::nullopt;
+}
+
+// inertial: {mass_kg, com_mm (flange frame), inertia_kg_m2: [ixx, iyy, izz(, ixy, ixz, iyz)]}.
+void ReadInertial(detail::YamlReader& r, const YAML::Node& root, HeadSpec& h) {
+  const auto in = r.Child(root, "inertial", false);
+  if (!in || !r.ExpectMap(*in, "inertial")) return;
+  r.CheckKeys(*in, {"mass_kg", "com_mm", "inertia_kg_m2"}, "inertial");
+  HeadInertial out;
+  bool ok = true;
+  if (auto n = r.Child(*in, "mass_kg", true)) {
+    const std::optional<double> mass = InertialNumber(r, *n, "inertial.mass_kg");
+    if (mass && !(*mass > 0.0)) r.Error(*n, "bad-inertial", "inertial.mass_kg must be > 0");
+    ok = ok && mass && *mass > 0.0;
+    out.mass_kg = mass.value_or(0.0);
+  } else {
+    ok = false;
+  }
+  const auto com = r.Child(*in, "com_mm", true);
+  const auto com_mm =
+      com ? InertialList(r, *com, {3}, "inertial.com_mm", "3 numbers (mm)") : std::nullopt;
+  if (com_mm) out.com_m = com_mm->head<3>() / 1000.0;
+  const auto inertia = r.Child(*in, "inertia_kg_m2", true);
+  const auto moments = inertia ? InertialList(r, *inertia, {3, 6}, "inertial.inertia_kg_m2",
+                                              "3 or 6 numbers [ixx, iyy, izz(, ixy, ixz, iyz)]")
+                               : std::nullopt;
+  if (moments) {
+    const Eigen::VectorXd& m = *moments;
+    const double ixy = m.size() == 6 ? m(3) : 0.0;
+    const double ixz = m.size() == 6 ? m(4) : 0.0;
+    const double iyz = m.size() == 6 ? m(5) : 0.0;
+    out.inertia_kg_m2 << m(0), ixy, ixz, ixy, m(1), iyz, ixz, iyz, m(2);
+    if (const std::string why = geom::InertiaProblem(out.inertia_kg_m2); !why.empty()) {
+      r.Error(*inertia, "bad-inertial", "inertial.inertia_kg_m2: " + why);
+      ok = false;
+    }
+  }
+  if (ok && com_mm && moments) h.inertial = out;
+}
+
 }  // namespace
 
 bool AllowedContact::Matches(const std::string& geom_name) const {
@@ -290,7 +361,8 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
   if (!r.ExpectMap(*root, "a head spec")) return std::nullopt;
   r.CheckKeys(*root,
               {"stitchsim_head", "name", "description", "kind", "tool_number", "mjcf", "tool_frame",
-               "needles", "stitch", "afp", "sequence", "envelope", "limits", "allowed_contacts"},
+               "needles", "stitch", "afp", "sequence", "envelope", "limits", "allowed_contacts",
+               "inertial"},
               "head spec");
   HeadSpec h;
   h.file = file;
@@ -302,6 +374,7 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
   ReadSequence(r, *root, h);
   ReadEnvelope(r, *root, h);
   ReadAllowedContacts(r, *root, h);
+  ReadInertial(r, *root, h);
   if (auto lim = r.Child(*root, "limits", false)) detail::ReadLimitMap(r, *lim, h.limits);
   if (sink.ErrorCount() > errors_before) return std::nullopt;
   return h;

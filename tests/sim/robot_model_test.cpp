@@ -11,6 +11,7 @@
 
 #include "sim_test_support.h"
 #include "stitchsim/common/files.h"
+#include "stitchsim/scene/head_spec.h"
 
 namespace stitchsim::sim {
 namespace {
@@ -164,6 +165,29 @@ TEST_F(sim_robot_model, DynamicsReadBack) {
   for (const char* name : {"world", "rail", "flange", "table", "rotator_base"}) {
     EXPECT_FALSE(model().links()[static_cast<std::size_t>(model().LinkIndex(name))].inertial)
         << name;
+  }
+}
+
+// Every bundled head lies within the arm's load diagram: mass, moment about a5 (the CoM's
+// distance from the a5 axis, c4 + Lz along the flange axis) and about a6 (its distance from
+// the flange axis), each against the rated payload at its rated distances.
+TEST_F(sim_robot_model, BundledHeadsWithinLoadDiagram) {
+  const PayloadRating& rated = model().payload_rating();
+  const double c4 = model().opw().c4_m;  // a5 axis to flange
+  const double rated_a5 = rated.mass_kg * std::hypot(c4 + rated.lz_m, rated.lxy_m);
+  const double rated_a6 = rated.mass_kg * rated.lxy_m;  // both per g
+  for (const char* name : {"rs535", "rs566", "afp"}) {
+    SCOPED_TRACE(name);
+    DiagnosticSink sink;
+    const std::optional<scene::HeadSpec> head =
+        scene::LoadHeadSpec(scene::ResolveHeadFile(name, {}), sink);
+    ASSERT_TRUE(head && head->inertial) << FormatAll(sink);
+    const scene::HeadInertial& in = *head->inertial;
+    const double lz = in.com_m.z();
+    const double lxy = in.com_m.head<2>().norm();
+    EXPECT_LE(in.mass_kg, rated.mass_kg);
+    EXPECT_LE(in.mass_kg * std::hypot(c4 + lz, lxy), rated_a5);
+    EXPECT_LE(in.mass_kg * lxy, rated_a6);
   }
 }
 

@@ -1,16 +1,14 @@
 #include "detail/urdf_dynamics.h"
 
-#include <Eigen/Eigenvalues>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <system_error>
 
+#include "stitchsim/geom/inertia.h"
+
 namespace stitchsim::sim::detail {
 namespace {
-
-// Relative tolerance of the inertia checks (symmetry, triangle inequality), against the trace.
-constexpr double kInertiaTolerance = 1e-12;
 
 std::string Num(double value) {
   char buffer[64];
@@ -33,27 +31,6 @@ std::optional<double> ParseNumber(std::string_view text) {
 
 Eigen::Matrix3d ToRotation(const urdf::Rotation& r) {
   return Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized().toRotationMatrix();
-}
-
-// Why `inertia` cannot be a rigid body's inertia about its CoM; empty when it can.
-std::string InertiaProblem(const Eigen::Matrix3d& inertia) {
-  if (!inertia.allFinite()) return "the inertia is not finite";
-  const double scale = std::max(inertia.trace(), 0.0) + 1e-300;
-  if ((inertia - inertia.transpose()).cwiseAbs().maxCoeff() > kInertiaTolerance * scale) {
-    return "the inertia is not symmetric";
-  }
-  const Eigen::Vector3d moments =
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia, Eigen::EigenvaluesOnly)
-          .eigenvalues();  // ascending
-  if (!(moments(0) > 0.0)) {
-    return "the inertia is not positive definite (smallest principal moment " + Num(moments(0)) +
-           " kg m^2)";
-  }
-  if (moments(0) + moments(1) < moments(2) * (1.0 - kInertiaTolerance)) {
-    return "the principal moments " + Num(moments(0)) + ", " + Num(moments(1)) + ", " +
-           Num(moments(2)) + " kg m^2 break the triangle inequality (a + b >= c)";
-  }
-  return {};
 }
 
 }  // namespace
@@ -90,7 +67,7 @@ std::optional<LinkInertial> ReadLinkInertial(const urdf::Link& link, const Sourc
   if (!com.allFinite()) return bad("the centre of mass is not finite");
   Eigen::Matrix3d about_com;  // in the <inertial> origin's axes
   about_com << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
-  if (const std::string why = InertiaProblem(about_com); !why.empty()) return bad(why);
+  if (const std::string why = geom::InertiaProblem(about_com); !why.empty()) return bad(why);
   const Eigen::Matrix3d r = ToRotation(in.origin.rotation);
   LinkInertial out;
   out.mass_kg = in.mass;
