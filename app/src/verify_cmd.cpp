@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <optional>
 #include <iostream>
+#include <optional>
 
 #include "cli_common.h"
 #include "commands.h"
@@ -270,6 +270,30 @@ void PrintDynamicsFigures(const sim::DynamicsFigures& f,
                f.max_error_mm, f.max_error_line);
 }
 
+// The snapshots: the AFP coverage maps, the overview, a close-up per rule with errors.
+int WriteSnapshots(const LoadedScene& ls, const sim::CellSetup& cell,
+                   const verify::Verifier& verifier, const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    PrintError("io-write", "cannot create snapshot folder " + dir + ": " + ec.message());
+    return kExitBadInput;
+  }
+  if (WriteAfpCoverageSnapshots(verifier, dir) != kExitOk) return kExitBadInput;
+  // The overview shows the robot clear above the start of the scene's first path.
+  Eigen::Isometry3d approach = PathStartTool(*ls.scene, ls.scene->paths.front());
+  approach.translation() += 400.0 * approach.linear().col(2);
+  const StartPose start = SolveStartPose(ls, approach);
+  if (WriteOverview(ls, verifier, dir, start.joints, start.tool_world_m) != kExitOk) {
+    return kExitBadInput;
+  }
+  for (const auto& rule : verifier.Rules()) {
+    if (rule->Summary().errors == 0) continue;
+    if (WriteCloseUp(ls, cell, *rule, dir) != kExitOk) return kExitBadInput;
+  }
+  return kExitOk;
+}
+
 int RunVerify(const VerifyArgs& a) {
   if (!OutputsDistinct(
           {{"--report", a.report_json}, {"--junit", a.junit}, {"--save-trace", a.save_trace}})) {
@@ -350,25 +374,8 @@ int RunVerify(const VerifyArgs& a) {
   verify::Report report = RunReport(a.program, a.scene, *ls->scene, stitch_length, summary);
   verifier.Finish(report);
   if (WriteReports(report, a.report_json, a.junit) != kExitOk) return kExitBadInput;
-  if (!a.snapshots.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(a.snapshots, ec);
-    if (ec) {
-      PrintError("io-write", "cannot create snapshot folder " + a.snapshots + ": " + ec.message());
-      return kExitBadInput;
-    }
-    if (WriteAfpCoverageSnapshots(verifier, a.snapshots) != kExitOk) return kExitBadInput;
-    // The overview shows the robot clear above the start of the scene's first path.
-    Eigen::Isometry3d approach = PathStartTool(*ls->scene, ls->scene->paths.front());
-    approach.translation() += 400.0 * approach.linear().col(2);
-    const StartPose start = SolveStartPose(*ls, approach);
-    if (WriteOverview(*ls, verifier, a.snapshots, start.joints, start.tool_world_m) != kExitOk) {
-      return kExitBadInput;
-    }
-    for (const auto& rule : verifier.Rules()) {
-      if (rule->Summary().errors == 0) continue;
-      if (WriteCloseUp(*ls, cell, *rule, a.snapshots) != kExitOk) return kExitBadInput;
-    }
+  if (!a.snapshots.empty() && WriteSnapshots(*ls, cell, verifier, a.snapshots) != kExitOk) {
+    return kExitBadInput;
   }
   return report.errors == 0 ? kExitOk : kExitFindings;
 }

@@ -190,8 +190,7 @@ class DialectLoader {
     const std::string text = node.IsScalar() ? node.Scalar() : std::string();
     double value = 0.0;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (!node.IsScalar() || text.empty() || ec != std::errc() ||
-        end != text.data() + text.size()) {
+    if (!node.IsScalar() || text.empty() || ec != std::errc() || end != text.data() + text.size()) {
       Fail(codes::kDialectBadValue, node, path + ": expected a number");
       return;
     }

@@ -35,6 +35,7 @@ struct MujocoData {
   std::unique_ptr<mjData, Deleter> d;
   JointVector last_q = JointVector::Constant(std::nan(""));
   JointVector q_ref = JointVector::Zero();    ///< the reference StepTo last moved to
+  JointVector qd_ref = JointVector::Zero();   ///< and its velocity
   JointVector ref_now = JointVector::Zero();  ///< the reference at PhysicsTime()
 };
 
@@ -59,9 +60,9 @@ std::string HeadInertialXml(const scene::HeadSpec& head) {
   const auto& in = *head.inertial;
   const Eigen::Matrix3d& I = in.inertia_kg_m2;
   return "<inertial pos=\"" + Num(in.com_m.x()) + " " + Num(in.com_m.y()) + " " +
-         Num(in.com_m.z()) + "\" mass=\"" + Num(in.mass_kg) + "\" fullinertia=\"" +
-         Num(I(0, 0)) + " " + Num(I(1, 1)) + " " + Num(I(2, 2)) + " " + Num(I(0, 1)) + " " +
-         Num(I(0, 2)) + " " + Num(I(1, 2)) + "\"/>";
+         Num(in.com_m.z()) + "\" mass=\"" + Num(in.mass_kg) + "\" fullinertia=\"" + Num(I(0, 0)) +
+         " " + Num(I(1, 1)) + " " + Num(I(2, 2)) + " " + Num(I(0, 1)) + " " + Num(I(0, 2)) + " " +
+         Num(I(1, 2)) + "\"/>";
 }
 
 bool MapNames(MujocoModel& mm, const RobotModel& robot, const std::string& file,
@@ -218,27 +219,36 @@ void MujocoCell::ResetPhysics(const JointVector& q) {
   for (int j = 0; j < kNumJoints; ++j) d.qpos[model_->qpos[j]] = q[j];
   mj_forward(&m, &d);
   data_->q_ref = q;
+  data_->qd_ref = JointVector::Zero();
   data_->ref_now = q;
   data_->last_q = JointVector::Constant(std::nan(""));
 }
 
-void MujocoCell::StepTo(double t_end, const JointVector& q_ref) {
+void MujocoCell::StepTo(double t_end, const JointVector& q_ref, const JointVector& qd_ref) {
   const mjModel& m = *model_->m;
   mjData& d = *data_->d;
   const double dt = m.opt.timestep;
-  const JointVector from = data_->q_ref;
+  const JointVector q0 = data_->q_ref, v0 = data_->qd_ref;
   const double t0 = d.time;
-  const double span = t_end - t0;
-  const JointVector velocity =
-      span > 1e-12 ? JointVector((q_ref - from) / span) : JointVector(JointVector::Zero());
-  // The reference at time t (linear from the last one to q_ref over the span).
-  const auto reference = [&](double t) -> JointVector {
-    const double f = span > 1e-12 ? std::clamp((t - t0) / span, 0.0, 1.0) : 1.0;
-    return from + f * (q_ref - from);
+  const double h = t_end - t0;
+  // The reference between the two samples: the cubic Hermite through both positions and
+  // velocities (the time law's), and its velocity.
+  const auto reference = [&](double t, JointVector& velocity) -> JointVector {
+    if (!(h > 1e-12)) {
+      velocity = qd_ref;
+      return q_ref;
+    }
+    const double u = std::clamp((t - t0) / h, 0.0, 1.0), u2 = u * u, u3 = u2 * u;
+    velocity = ((6 * u2 - 6 * u) * q0 + (3 * u2 - 4 * u + 1) * h * v0 + (6 * u - 6 * u2) * q_ref +
+                (3 * u2 - 2 * u) * h * qd_ref) /
+               h;
+    return (2 * u3 - 3 * u2 + 1) * q0 + (u3 - 2 * u2 + u) * h * v0 + (3 * u2 - 2 * u3) * q_ref +
+           (u3 - u2) * h * qd_ref;
   };
+  JointVector velocity;
   while (d.time + 0.5 * dt <= t_end) {
     mj_step1(&m, &d);  // positions and velocities: qfrc_bias (gravity, Coriolis) is current
-    const JointVector ref = reference(d.time + dt);
+    const JointVector ref = reference(d.time + dt, velocity);
     for (int j = 0; j < kNumJoints; ++j) {
       const int a = model_->servo[j];
       if (a < 0) continue;
@@ -251,7 +261,8 @@ void MujocoCell::StepTo(double t_end, const JointVector& q_ref) {
     mj_step2(&m, &d);
   }
   data_->q_ref = q_ref;
-  data_->ref_now = reference(d.time);
+  data_->qd_ref = qd_ref;
+  data_->ref_now = reference(d.time, velocity);
   data_->last_q = JointVector::Constant(std::nan(""));  // qpos moved: no kinematics cached
 }
 
@@ -265,9 +276,7 @@ JointVector MujocoCell::PhysicsJoints() const {
   return q;
 }
 
-double MujocoCell::Armature(int joint) const {
-  return model_->m->dof_armature[model_->dof[joint]];
-}
+double MujocoCell::Armature(int joint) const { return model_->m->dof_armature[model_->dof[joint]]; }
 
 double MujocoCell::Timestep() const { return model_->m->opt.timestep; }
 

@@ -130,9 +130,18 @@ TimeLawPlanner::HeldLine TimeLawPlanner::Prepare(const TimedLineInput& line) con
     const double dq = std::abs(line.dq_ds_max(j));
     if (!(dq > 0.0)) continue;
     if (limits_.max_velocity(j) > 0.0) v_cruise = std::min(v_cruise, limits_.max_velocity(j) / dq);
-    if (limits_.max_acceleration(j) > 0.0) {
-      accel_axes = std::min(accel_axes, limits_.max_acceleration(j) / dq);
+    // A curved joint path: the curvature term d2q/ds2 sdot^2 may take at most half of the
+    // axis' acceleration, the ramps the rest (below).
+    const double ddq = std::abs(line.d2q_ds2_max(j));
+    if (limits_.max_acceleration(j) > 0.0 && ddq > 0.0) {
+      v_cruise = std::min(v_cruise, std::sqrt(0.5 * limits_.max_acceleration(j) / ddq));
     }
+  }
+  for (int j = 0; j < trace::kNumJoints; ++j) {
+    const double dq = std::abs(line.dq_ds_max(j));
+    if (!(dq > 0.0) || !(limits_.max_acceleration(j) > 0.0)) continue;
+    const double curvature = std::abs(line.d2q_ds2_max(j)) * v_cruise * v_cruise;
+    accel_axes = std::min(accel_axes, (limits_.max_acceleration(j) - curvature) / dq);
   }
   // No motion, or nothing bounds the speed (no programmed time, no limit on a moving axis):
   // the line takes no time.

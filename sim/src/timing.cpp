@@ -103,6 +103,8 @@ TimedLineInput TimingSink::InputOf(const Line& l) const {
           ((l.node_q[k + 1] - l.node_q[k]) / (l.node_s[k + 1] - l.node_s[k])).cwiseAbs();
       in.dq_ds_max = in.dq_ds_max.cwiseMax(chord);
     }
+    for (const JointVector& ddq : l.node_ddq)
+      in.d2q_ds2_max = in.d2q_ds2_max.cwiseMax(ddq.cwiseAbs());
   }
   return in;
 }
@@ -175,14 +177,12 @@ void TimingSink::TimeSample(const Line& l, const Line* next, TraceSample& s) {
       !next->node_dq.empty() && !l.node_dq.empty()) {
     const JointVector before = l.node_dq.back() * l.profile.v_out;
     const JointVector after = next->node_dq.front() * next->profile.v_in;
-    const double t_blend =
-        JunctionBlendTime(l.profile.v_nominal, next->profile.v_nominal,
-                          l.profile.v_out / l.profile.v_nominal, options_.law);
+    const double t_blend = JunctionBlendTime(l.profile.v_nominal, next->profile.v_nominal,
+                                             l.profile.v_out / l.profile.v_nominal, options_.law);
     if (t_blend > 0.0) s.joint_accelerations = (after - before) / t_blend;
   }
   if (options_.torques) {
-    s.joint_torques =
-        mujoco_.InverseDynamics(s.joints, s.joint_velocities, s.joint_accelerations);
+    s.joint_torques = mujoco_.InverseDynamics(s.joints, s.joint_velocities, s.joint_accelerations);
   }
 }
 

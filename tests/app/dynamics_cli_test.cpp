@@ -39,40 +39,40 @@ nlohmann::json Rule(const nlohmann::json& report, const std::string& id) {
 TEST(VerifyTimed, ReportsGiveBothCycleTimesAndTheDynamicsRules) {
   const fs::path nc = PlanCircle("timed");
   const fs::path json = ScratchDir() / "timed.json";
-  const auto run = RunCli("verify " + nc.string() + " --scene " +
-                              (kSource / "scenes/circle_8in.yaml").string() + " --report " +
-                              json.string(),
-                          "timed_verify");
+  const auto run =
+      RunCli("verify " + nc.string() + " --scene " + (kSource / "scenes/circle_8in.yaml").string() +
+                 " --report " + json.string(),
+             "timed_verify");
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
   const auto report = nlohmann::json::parse(ReadText(json));
   const double simple = report["cycle_time_s"], timed = report["cycle_time_timed_s"];
   EXPECT_GT(timed, simple);  // ramps only add time
-  EXPECT_LT(timed, 1.5 * simple);
+  // Every decoupled stitch starts and stops (a rotation with its settle between): about
+  // 0.45 s a stitch on the ramps against 0.2 s at the stitch rate.
+  EXPECT_LT(timed, 2.0 * simple);
   EXPECT_NE(run.out.find("with acceleration"), std::string::npos) << run.out;
   for (const char* id : {"kin.acceleration", "kin.torque", "kin.payload"}) {
     const auto r = Rule(report, id);
     ASSERT_FALSE(r.is_null()) << id;
     EXPECT_EQ(r["errors"], 0) << id;
   }
-  EXPECT_TRUE(Rule(report, "dyn.tracking").is_null());
-  bool skipped = false;
-  for (const auto& s : report["skipped_rules"]) skipped |= s["id"] == "dyn.tracking";
-  EXPECT_TRUE(skipped);
+  EXPECT_TRUE(Rule(report, "dyn.tracking").is_null());  // only in a dynamic run
+  EXPECT_TRUE(report["skipped_rules"].empty());
 }
 
 TEST(VerifyTimed, DynamicsReportsTrackingAndItsRealTimeFactor) {
   const fs::path nc = PlanCircle("dyn");
   const fs::path json = ScratchDir() / "dyn.json";
-  const auto run = RunCli("verify " + nc.string() + " --scene " +
-                              (kSource / "scenes/circle_8in.yaml").string() + " --dynamics" +
-                              " --report " + json.string(),
-                          "dyn_verify");
+  const auto run =
+      RunCli("verify " + nc.string() + " --scene " + (kSource / "scenes/circle_8in.yaml").string() +
+                 " --dynamics" + " --report " + json.string(),
+             "dyn_verify");
   ASSERT_LE(run.exit_code, 1) << run.out << run.err;
   const auto report = nlohmann::json::parse(ReadText(json));
   const auto tracking = Rule(report, "dyn.tracking");
   ASSERT_FALSE(tracking.is_null());
   EXPECT_GT(tracking["checked"].get<long>(), 1000);
-  EXPECT_GT(tracking["worst_value"].get<double>(), 0.0);
+  EXPECT_GT(tracking["worst"]["value"].get<double>(), 0.0);
   double simulated = 0, wall = 0, factor = 0;
   const auto at = run.err.find("dynamics: ");
   ASSERT_NE(at, std::string::npos) << run.err;
@@ -109,8 +109,8 @@ TEST(VerifyTimed, ExactStopDialectTakesLonger) {
     std::ofstream d(dialect);
     d << "trajectory:\n  blending: sometimes\n";
   }
-  const auto bad = RunCli("verify " + nc.string() + scene + " --dialect " + dialect.string(),
-                          "bad_blend");
+  const auto bad =
+      RunCli("verify " + nc.string() + scene + " --dialect " + dialect.string(), "bad_blend");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("exact_stop.yaml:2"), std::string::npos) << bad.err;
 }

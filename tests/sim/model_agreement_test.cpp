@@ -39,7 +39,7 @@ using MjDataPtr = std::unique_ptr<mjData, MjDataDeleter>;
 constexpr double kEffortMargin = 1.5;
 constexpr double kLargestPartKg = 2000.0;  // on the rotator, as a point mass at 1 m radius
 constexpr double kLargestPartRadiusM = 1.0;
-constexpr double kServoBandwidthHz = 8.0;
+constexpr double kServoBandwidthHz = 15.0;
 constexpr double kServoDampingRatio = 1.0;
 
 // The cell MJCF with the rated payload (a point mass at (0, lxy, lz) in the flange frame, so

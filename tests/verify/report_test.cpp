@@ -201,7 +201,8 @@ TEST(report_json, KeysInDocumentedOrder) {
   const OrderedJson j = OrderedJson::parse(ReportToJson(FailingReport()));
   EXPECT_EQ(Keys(j), (std::vector<std::string>{"stitchsim_report", "stitchsim_version", "verdict",
                                                "program", "scene", "counts", "stitch_length_mm",
-                                               "cycle_time_s", "rules", "skipped_rules"}));
+                                               "cycle_time_s", "cycle_time_timed_s", "rules",
+                                               "skipped_rules"}));
   EXPECT_EQ(Keys(j["scene"]), (std::vector<std::string>{"file", "name", "head"}));
   EXPECT_EQ(Keys(j["counts"]),
             (std::vector<std::string>{"lines", "moves", "stitches", "errors", "warnings"}));

@@ -61,9 +61,10 @@ TEST(VerifierContext, AVerifierMadeFromATemporaryContextRuns) {
   ASSERT_NE(side, nullptr);
   EXPECT_EQ(side->checked, static_cast<long>(model.needles.size()));
   EXPECT_GT(*side->worst_value, 0.0);
-  // No collision check in the trace: the collision rules are listed as skipped.
+  // No collision check in the trace: the collision rules are listed as skipped; no timed
+  // trajectory in it either (kin.acceleration, kin.torque), nor a load diagram (kin.payload).
   EXPECT_EQ(RuleOf(r, "collision.head_mold"), nullptr);
-  EXPECT_EQ(r.skipped.size(), 3u);
+  EXPECT_EQ(r.skipped.size(), 6u);
 }
 
 // The collision rules read the trace: a contact written into a sample is a finding naming the
@@ -102,7 +103,11 @@ TEST(VerifierContext, CollisionRulesReadContactsFromTheTrace) {
   ASSERT_EQ(clearance->warnings, 1);
   EXPECT_EQ(clearance->findings.front().line, 9);
   EXPECT_EQ(clearance->findings.front().subject, "link_3|rail");
-  EXPECT_TRUE(r.skipped.empty());
+  // A hand-made trace: no timed trajectory, no load diagram in its cell description.
+  ASSERT_EQ(r.skipped.size(), 3u);
+  EXPECT_EQ(r.skipped[0].id, "kin.acceleration");
+  EXPECT_EQ(r.skipped[1].id, "kin.torque");
+  EXPECT_EQ(r.skipped[2].id, "kin.payload");
 }
 
 }  // namespace

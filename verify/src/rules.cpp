@@ -571,7 +571,6 @@ std::vector<SkippedRule> SkippedRules(const RuleContext& ctx) {
                                           ? "the cell model gives no load diagram"
                                           : "the head spec gives no mass (`inertial:`)"});
   }
-  if (!ctx.cell->dynamic) skipped.push_back({"dyn.tracking", "not a dynamic run (--dynamics)"});
   if (ctx.cell->collision_checked) return skipped;
   const std::string reason = "--no-collision";
   for (const char* id : {"collision.head_mold", "collision.robot_cell", "collision.clearance"}) {

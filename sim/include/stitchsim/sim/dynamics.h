@@ -12,10 +12,10 @@
 namespace stitchsim::sim {
 
 struct DynamicsFigures {
-  long samples = 0;               ///< samples tracked
-  double simulated_s = 0.0;       ///< physics time stepped
-  double max_error_mm = 0.0;      ///< largest tool point lag
-  int max_error_line = 0;         ///< its line
+  long samples = 0;           ///< samples tracked
+  double simulated_s = 0.0;   ///< physics time stepped
+  double max_error_mm = 0.0;  ///< largest tool point lag
+  int max_error_line = 0;     ///< its line
 };
 
 class DynamicsSink final : public TraceSink {
@@ -23,7 +23,7 @@ class DynamicsSink final : public TraceSink {
   /// `physics` steps (its own working state); `kinematics` (another state on the same model,
   /// MujocoCell::Share) poses the reference and the actual joints. All must outlive the sink.
   DynamicsSink(MujocoCell& physics, MujocoCell& kinematics, TraceSink& next);
-  void OnLine(const LineRecord& line) override { next_.OnLine(line); }
+  void OnLine(const LineRecord& line) override;
   void OnSample(const TraceSample& sample) override;
   const DynamicsFigures& Figures() const { return figures_; }
 
@@ -33,6 +33,8 @@ class DynamicsSink final : public TraceSink {
   TraceSink& next_;
   bool started_ = false;
   double t0_ = 0.0;  ///< timed time of the first tracked sample (physics time 0)
+  double line_start_s_ = 0.0, line_duration_s_ = 0.0;  ///< the current line, timed
+  JointVector last_q_ = JointVector::Zero(), last_qd_ = JointVector::Zero();
   DynamicsFigures figures_;
 };
 

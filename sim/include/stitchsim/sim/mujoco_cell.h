@@ -46,18 +46,17 @@ class MujocoCell {
   /// qpos = q (model order), qvel = 0, mj_kinematics. The same q as the last call is free.
   void SetJoints(const JointVector& q);
   /// After SetJoints: world poses, metres.
-  Eigen::Isometry3d ToolWorld() const;             ///< the head's tool_point site
-  Eigen::Isometry3d LinkWorld(int link) const;     ///< RobotModel::links() index
-  Eigen::Isometry3d PartWorld() const;             ///< the part frame on its mount
-  void LinkFramesOut(LinkFrames& out) const;       ///< every link (out from MakeLinkFrames)
+  Eigen::Isometry3d ToolWorld() const;          ///< the head's tool_point site
+  Eigen::Isometry3d LinkWorld(int link) const;  ///< RobotModel::links() index
+  Eigen::Isometry3d PartWorld() const;          ///< the part frame on its mount
+  void LinkFramesOut(LinkFrames& out) const;    ///< every link (out from MakeLinkFrames)
   /// Tool pose in the part frame, translation in millimetres (the trace's tool_part).
   Eigen::Isometry3d ToolInPartMm() const;
 
   // Dynamics ------------------------------------------------------------------------------
   /// Joint forces (model order: N for the rail, N m) that move the cell with q, qd, qdd:
   /// mj_inverse (inertia with armature, gravity, Coriolis and centrifugal, joint damping).
-  JointVector InverseDynamics(const JointVector& q, const JointVector& qd,
-                              const JointVector& qdd);
+  JointVector InverseDynamics(const JointVector& q, const JointVector& qd, const JointVector& qdd);
   /// The servos; false (and a diagnostic) when the MJCF lacks one.
   bool HasServos() const;
   const ServoGains& Servo(int joint) const;
@@ -65,12 +64,13 @@ class MujocoCell {
   double Armature(int joint) const;
   /// Physics: the cell at rest at q, time 0.
   void ResetPhysics(const JointVector& q);
-  /// Steps the physics by whole timesteps up to `t_end` (s), the servo reference moving
-  /// linearly from its last value to `q_ref` (velocity feedforward (q_ref - last)/(t_end - t)),
+  /// Steps the physics by whole timesteps up to `t_end` (s), the servo reference moving from
+  /// its last position and velocity to `q_ref`, `qd_ref` on the cubic Hermite through them
+  /// (its velocity fed forward),
   /// gravity and Coriolis fed forward from the model (what a controller's dynamic model does),
   /// inertia not (the servo's lag). The physics lands within half a timestep of t_end; the
   /// reference at the time it reached is ReferenceNow() (compare poses at equal times).
-  void StepTo(double t_end, const JointVector& q_ref);
+  void StepTo(double t_end, const JointVector& q_ref, const JointVector& qd_ref);
   JointVector ReferenceNow() const;
   double PhysicsTime() const;
   JointVector PhysicsJoints() const;

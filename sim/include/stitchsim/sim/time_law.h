@@ -37,6 +37,9 @@ struct TimedLineInput {
   JointVector dq_ds_start = JointVector::Zero();  ///< dq/ds at s = 0 (m or rad)
   JointVector dq_ds_end = JointVector::Zero();    ///< dq/ds at s = 1 (m or rad)
   JointVector dq_ds_max = JointVector::Zero();    ///< max |dq/ds| over the line, per joint
+  /// max |d2q/ds2| over the line, per joint: a curved joint path (a wrist turning fast near a
+  /// singularity) needs acceleration even at constant sdot; 0 = straight in joint space.
+  JointVector d2q_ds2_max = JointVector::Zero();
 };
 
 /// The planned motion of one line: s(t) on [0, duration_s]. A line without motion has all
