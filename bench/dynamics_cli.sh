@@ -23,7 +23,7 @@ done
 python3 - "$out/base.json" "$out/new.json" <<'PY'
 import json, sys
 b, n = (json.load(open(p)) for p in sys.argv[1:3])
-print("  verdicts: baseline %s (%d errors), kinematic %s (%d errors)" % (b["verdict"], b["errors"], n["verdict"], n["errors"]))
+print("  verdicts: baseline %s (%d errors), kinematic %s (%d errors)" % (b["verdict"], b["counts"]["errors"], n["verdict"], n["counts"]["errors"]))
 print("  cycle time: %.1f s at the programmed speeds, %.1f s with acceleration" % (n["cycle_time_s"], n["cycle_time_timed_s"]))
 PY
 "$bin" plan stitch --scene "$scenes/circle_8in.yaml" --path circle --mode decoupled \

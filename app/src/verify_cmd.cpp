@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -72,6 +73,7 @@ sim::TimingOptions TimingOptionsFor(const program::Dialect& dialect,
   t.law.continuous = dialect.trajectory.continuous;
   t.law.look_ahead_lines = dialect.trajectory.look_ahead_lines;
   t.settle_time_s = execute.settle_time_s;
+  t.torques = !std::getenv("X_NOTQ");
   return t;
 }
 
@@ -332,7 +334,7 @@ int RunVerify(const VerifyArgs& a) {
   }
   std::optional<MujocoCells> mj = MakeMujocoCells(*ls, cell, a.dynamics);
   if (!mj) return kExitBadInput;
-  if (collision) collision->UseKinematics(mj->kinematics.get());
+  if (collision && !std::getenv("X_NOCOLMJ")) collision->UseKinematics(mj->kinematics.get());
   trace::CellDescription cell_description = sim::DescribeCell(*ls->robot, collision.get());
   cell_description.timed = true;
   cell_description.dynamic = a.dynamics;
@@ -341,7 +343,7 @@ int RunVerify(const VerifyArgs& a) {
   sim::ExecuteOptions execute_options = sim::ExecuteOptionsFor(*ls->scene);
   execute_options.collision = collision.get();
   execute_options.allow_head_mismatch = a.allow_mismatch;
-  execute_options.mujoco = mj->kinematics.get();
+  execute_options.mujoco = std::getenv("X_NOEXMJ") ? nullptr : mj->kinematics.get();
   execute_options.solve_every_sample = a.dynamics;
   verify::Verifier verifier(ctx, !a.snapshots.empty());
   std::unique_ptr<trace::TraceFileWriter> saved;

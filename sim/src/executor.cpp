@@ -52,6 +52,10 @@ struct LinePlan {
 
 using SampleList = std::vector<std::pair<double, SampleEvent>>;
 
+// The tag of a sample the collision subdivision inserted (solved like the grid, emitted as
+// kNone with TraceSample::collision_probe set).
+constexpr SampleEvent kCollisionProbe = static_cast<SampleEvent>(100);
+
 void SortSamples(SampleList& samples) {
   std::stable_sort(samples.begin(), samples.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -188,7 +192,10 @@ class Executor {
     t.line_fraction = s;
     t.event = first ? SampleEvent::kLineStart
                     : (last ? SampleEvent::kLineEnd
-                            : (tag == SampleEvent::kLineEnd ? SampleEvent::kNone : tag));
+                            : (tag == SampleEvent::kLineEnd || tag == kCollisionProbe
+                                   ? SampleEvent::kNone
+                                   : tag));
+    t.collision_probe = tag == kCollisionProbe && !first && !last;
     t.tool_part = process::InterpolatePose(from.tool, to.tool, s);
     t.drive_mm = from.drive + s * p.du;
     t.path_mm = from.path + s * (to.path - from.path);
@@ -209,7 +216,8 @@ class Executor {
     if (t.stitch < 0) t.stitch = 0;
     // Joints on the coarse grid and at line ends; needle events and the fine in-preform
     // samples feed the process rules, which need only the tool pose.
-    if (first || last || tag == SampleEvent::kLineEnd || options_.solve_every_sample) {
+    if (first || last || tag == SampleEvent::kLineEnd || tag == kCollisionProbe ||
+        options_.solve_every_sample) {
       SolveSample(from, to, s, t);
       if (options_.collision != nullptr && trace::JointsUsable(t)) RecordCollision(t);
     }
@@ -312,7 +320,10 @@ class Executor {
     std::vector<double> extra;
     for (std::size_t i = 0; i < samples.size(); ++i) {
       const bool first = i == 0, last = i + 1 == samples.size();
-      if (!(first || last || samples[i].second == SampleEvent::kLineEnd)) continue;
+      if (!(first || last || samples[i].second == SampleEvent::kLineEnd ||
+            samples[i].second == kCollisionProbe)) {
+        continue;
+      }
       if (first && have_pose_) continue;
       const double s = samples[i].first;
       ToolPoseSolution sol = SolveAt(from, to, s, have_joints_ || have_prev ? &prev : nullptr);
@@ -342,7 +353,7 @@ class Executor {
       prev_s = s;
     }
     if (extra.empty()) return;
-    for (double s : extra) samples.emplace_back(s, SampleEvent::kLineEnd);
+    for (double s : extra) samples.emplace_back(s, kCollisionProbe);
     SortSamples(samples);
   }
 

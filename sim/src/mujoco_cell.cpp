@@ -33,7 +33,16 @@ struct MujocoData {
     void operator()(mjData* d) const { mj_deleteData(d); }
   };
   std::unique_ptr<mjData, Deleter> d;
-  JointVector last_q = JointVector::Constant(std::nan(""));
+  /// The frames MuJoCo's kinematics gave at the last few joint vectors: the executor and the
+  /// collision world's subdivision ask about the same joints again within a few calls.
+  struct Frames {
+    JointVector q = JointVector::Constant(std::nan(""));
+    std::vector<Eigen::Isometry3d> links;  ///< per URDF link, world, metres
+    Eigen::Isometry3d tool = Eigen::Isometry3d::Identity(), part = Eigen::Isometry3d::Identity();
+  };
+  static constexpr std::size_t kCached = 8;
+  std::array<Frames, kCached> cache;
+  std::size_t current = 0, next = 0;
   JointVector q_ref = JointVector::Zero();    ///< the reference StepTo last moved to
   JointVector qd_ref = JointVector::Zero();   ///< and its velocity
   JointVector ref_now = JointVector::Zero();  ///< the reference at PhysicsTime()
@@ -129,8 +138,10 @@ MujocoCell::~MujocoCell() = default;
 std::unique_ptr<MujocoCell> MujocoCell::Create(const scene::Scene& scene, const RobotModel& robot,
                                                const CellSetup& cell, DiagnosticSink& sink) {
   auto mm = std::make_shared<MujocoModel>();
+  // No geoms: the masses come from <inertial> (the MJCF says inertiafromgeom="false"), and
+  // interference is FCL's, so the kinematics need not pose them.
   mm->m = detail::CompileCellWithHead(scene.cell_mjcf, scene.head.mjcf, sink,
-                                      HeadInertialXml(scene.head), "mujoco-model");
+                                      HeadInertialXml(scene.head), "mujoco-model", true);
   if (!mm->m) return nullptr;
   // Interference is FCL's: MuJoCo's contacts would push the arm off the bodies it touches.
   mm->m->opt.disableflags |= mjDSBL_CONTACT;
@@ -152,36 +163,42 @@ std::unique_ptr<MujocoCell> MujocoCell::Share() const {
 }
 
 void MujocoCell::SetJoints(const JointVector& q) {
-  if (q == data_->last_q) return;
+  MujocoData& data = *data_;
+  for (std::size_t i = 0; i < MujocoData::kCached; ++i) {
+    if (data.cache[i].q == q) {
+      data.current = i;
+      return;
+    }
+  }
   const mjModel& m = *model_->m;
-  mjData& d = *data_->d;
+  mjData& d = *data.d;
   for (int j = 0; j < kNumJoints; ++j) d.qpos[model_->qpos[j]] = q[j];
   mj_kinematics(&m, &d);
-  data_->last_q = q;
+  MujocoData::Frames& f = data.cache[data.next];
+  data.current = data.next;
+  data.next = (data.next + 1) % MujocoData::kCached;
+  f.q = q;
+  f.links.resize(model_->link_body.size());
+  for (std::size_t i = 0; i < f.links.size(); ++i) {
+    const int b = model_->link_body[i];
+    f.links[i] = PoseOf(d.xpos + 3 * b, d.xmat + 9 * b);
+  }
+  const int s = model_->tool_site, b = model_->mount_body;
+  f.tool = PoseOf(d.site_xpos + 3 * s, d.site_xmat + 9 * s);
+  f.part = PoseOf(d.xpos + 3 * b, d.xmat + 9 * b) * model_->mount_to_part;
 }
 
-Eigen::Isometry3d MujocoCell::ToolWorld() const {
-  const mjData& d = *data_->d;
-  const int s = model_->tool_site;
-  return PoseOf(d.site_xpos + 3 * s, d.site_xmat + 9 * s);
-}
+Eigen::Isometry3d MujocoCell::ToolWorld() const { return data_->cache[data_->current].tool; }
 
 Eigen::Isometry3d MujocoCell::LinkWorld(int link) const {
-  const mjData& d = *data_->d;
-  const int b = model_->link_body[static_cast<std::size_t>(link)];
-  return PoseOf(d.xpos + 3 * b, d.xmat + 9 * b);
+  return data_->cache[data_->current].links[static_cast<std::size_t>(link)];
 }
 
-Eigen::Isometry3d MujocoCell::PartWorld() const {
-  const mjData& d = *data_->d;
-  const int b = model_->mount_body;
-  return PoseOf(d.xpos + 3 * b, d.xmat + 9 * b) * model_->mount_to_part;
-}
+Eigen::Isometry3d MujocoCell::PartWorld() const { return data_->cache[data_->current].part; }
 
 void MujocoCell::LinkFramesOut(LinkFrames& out) const {
-  for (std::size_t i = 0; i < model_->link_body.size(); ++i) {
-    out.world_pose[i] = LinkWorld(static_cast<int>(i));
-  }
+  const auto& links = data_->cache[data_->current].links;
+  std::copy(links.begin(), links.end(), out.world_pose.begin());
 }
 
 Eigen::Isometry3d MujocoCell::ToolInPartMm() const {
@@ -199,8 +216,32 @@ JointVector MujocoCell::InverseDynamics(const JointVector& q, const JointVector&
     d.qvel[model_->dof[j]] = qd[j];
     d.qacc[model_->dof[j]] = qdd[j];
   }
+  // What mj_inverse gives on this model (no constraints, springs or friction loss), for
+  // half its cost: the recursive Newton-Euler pass (M qacc + gravity, Coriolis, centrifugal)
+  // on the rigid bodies, plus each joint's armature (the rotors' inertia, which MuJoCo keeps
+  // on the mass matrix's diagonal) and its viscous damping. A test holds the two equal.
+  mj_kinematics(&m, &d);
+  mj_comPos(&m, &d);
+  mj_comVel(&m, &d);
+  mj_rne(&m, &d, 1, d.qfrc_inverse);
+  JointVector tau;
+  for (int j = 0; j < kNumJoints; ++j) {
+    const int v = model_->dof[j];
+    tau[j] = d.qfrc_inverse[v] + m.dof_armature[v] * qdd[j] + m.dof_damping[v] * qd[j];
+  }
+  return tau;
+}
+
+JointVector MujocoCell::InverseDynamicsReference(const JointVector& q, const JointVector& qd,
+                                                 const JointVector& qdd) {
+  const mjModel& m = *model_->m;
+  mjData& d = *data_->d;
+  for (int j = 0; j < kNumJoints; ++j) {
+    d.qpos[model_->qpos[j]] = q[j];
+    d.qvel[model_->dof[j]] = qd[j];
+    d.qacc[model_->dof[j]] = qdd[j];
+  }
   mj_inverse(&m, &d);
-  data_->last_q = q;  // mj_inverse ran the kinematics at q
   JointVector tau;
   for (int j = 0; j < kNumJoints; ++j) tau[j] = d.qfrc_inverse[model_->dof[j]];
   return tau;
@@ -221,7 +262,6 @@ void MujocoCell::ResetPhysics(const JointVector& q) {
   data_->q_ref = q;
   data_->qd_ref = JointVector::Zero();
   data_->ref_now = q;
-  data_->last_q = JointVector::Constant(std::nan(""));
 }
 
 void MujocoCell::StepTo(double t_end, const JointVector& q_ref, const JointVector& qd_ref) {
@@ -263,7 +303,6 @@ void MujocoCell::StepTo(double t_end, const JointVector& q_ref, const JointVecto
   data_->q_ref = q_ref;
   data_->qd_ref = qd_ref;
   data_->ref_now = reference(d.time, velocity);
-  data_->last_q = JointVector::Constant(std::nan(""));  // qpos moved: no kinematics cached
 }
 
 JointVector MujocoCell::ReferenceNow() const { return data_->ref_now; }

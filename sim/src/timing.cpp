@@ -24,7 +24,17 @@ TimingSink::TimingSink(MujocoCell& mujoco, const RobotModel& robot, const Timing
 
 void TimingSink::OnLine(const LineRecord& line) {
   if (open_) CloseLine();
-  Line& l = lines_.emplace_back();
+  if (spare_.empty()) {
+    lines_.emplace_back();
+  } else {
+    lines_.push_back(std::move(spare_.back()));
+    spare_.pop_back();
+  }
+  Line& l = lines_.back();
+  l.samples.clear();
+  l.node_s.clear();
+  l.node_q.clear();
+  l.planned = false;
   l.rec = line;
   if (have_joints_) {
     l.node_s.push_back(0.0);
@@ -55,7 +65,7 @@ void TimingSink::Finish() {
   PopPlanned();
   while (!lines_.empty() && lines_.front().planned) {
     Emit(lines_.front(), lines_.size() > 1 && lines_[1].planned ? &lines_[1] : nullptr);
-    lines_.pop_front();
+    Recycle();
   }
 }
 
@@ -131,8 +141,13 @@ void TimingSink::PopPlanned() {
   // A line goes out once its successor is planned too (its end sample carries the junction).
   while (lines_.size() >= 2 && lines_[0].planned && lines_[1].planned) {
     Emit(lines_[0], &lines_[1]);
-    lines_.pop_front();
+    Recycle();
   }
+}
+
+void TimingSink::Recycle() {
+  spare_.push_back(std::move(lines_.front()));
+  lines_.pop_front();
 }
 
 void TimingSink::Emit(Line& l, const Line* next) {
@@ -181,7 +196,7 @@ void TimingSink::TimeSample(const Line& l, const Line* next, TraceSample& s) {
                                              l.profile.v_out / l.profile.v_nominal, options_.law);
     if (t_blend > 0.0) s.joint_accelerations = (after - before) / t_blend;
   }
-  if (options_.torques) {
+  if (options_.torques && !s.collision_probe) {
     s.joint_torques = mujoco_.InverseDynamics(s.joints, s.joint_velocities, s.joint_accelerations);
   }
 }

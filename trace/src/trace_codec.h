@@ -25,7 +25,8 @@ inline constexpr std::uint16_t kSameRotation = 1u << 9;  ///< rotation as the pr
 inline constexpr std::uint16_t kHasClearancePair = 1u << 10;
 inline constexpr std::uint16_t kHasTiming = 1u << 11;  ///< timed_s (+ velocities... with joints)
 inline constexpr std::uint16_t kTracked = 1u << 12;    ///< tracking errors (dynamic mode)
-inline constexpr std::uint16_t kKnownSampleFlags = (1u << 13) - 1;
+inline constexpr std::uint16_t kCollisionProbe = 1u << 13;  ///< a collision subdivision sample
+inline constexpr std::uint16_t kKnownSampleFlags = (1u << 14) - 1;
 
 /// Line flags (u8).
 inline constexpr std::uint8_t kRapid = 1u << 0;

@@ -242,6 +242,7 @@ void DecodeSample(Decoder& d, const CellDescription& cell, bool have_previous, T
   s.drive_advancing = (flags & codec::kDriveAdvancing) != 0;
   s.needles_in = (flags & codec::kNeedlesIn) != 0;
   s.has_joints = (flags & codec::kHasJoints) != 0;
+  s.collision_probe = (flags & codec::kCollisionProbe) != 0;
   s.time_s = d.F64("sample time");
   s.source_line = d.I32("sample line");
   s.stitch = d.I64("sample stitch");

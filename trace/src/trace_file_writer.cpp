@@ -177,6 +177,7 @@ void TraceFileWriter::OnSample(const TraceSample& s) {
   if (c.checked && c.clearance_body_a >= 0) flags |= codec::kHasClearancePair;
   if (s.has_timing) flags |= codec::kHasTiming;
   if (s.tracked) flags |= codec::kTracked;
+  if (s.collision_probe) flags |= codec::kCollisionProbe;
   e.U8(codec::kSampleTag);
   e.U16(flags);
   e.F64(s.time_s);

@@ -29,21 +29,22 @@ class JointLoadRule : public Rule {
         limits_(limits),
         quantity_(quantity) {}
   void OnSample(const trace::TraceSample& s) override {
-    if (!s.has_timing || !trace::JointsUsable(s)) return;
+    if (!s.has_timing || !trace::JointsUsable(s) || !Applies(s)) return;
     const trace::JointVector& v = Values(s);
     double worst = 0.0;
     int joint = -1;
     for (int j = 0; j < trace::kNumJoints; ++j) {
       if (!(limits_[j] > 0.0)) continue;
-      // To a millionth of a percent: the time law plans exactly at a limit, and the last bits
-      // of the finite differences are not a finding.
-      const double pct = std::round(std::abs(v[j]) / limits_[j] * 1e8) / 1e6;
-      if (joint < 0 || pct > worst) {
-        worst = pct;
+      const double ratio = std::abs(v[j]) / limits_[j];
+      if (joint < 0 || ratio > worst) {
+        worst = ratio;
         joint = j;
       }
     }
     if (joint < 0) return;
+    // To a millionth of a percent: the time law plans exactly at a limit, and the last bits
+    // of the finite differences are not a finding.
+    worst = std::round(worst * 1e8) / 1e6;
     const std::string& name = cell_->joint_names[static_cast<std::size_t>(joint)];
     const bool rail = joint == trace::kRailX;
     CheckUpper(
@@ -57,6 +58,7 @@ class JointLoadRule : public Rule {
 
  protected:
   virtual const trace::JointVector& Values(const trace::TraceSample& s) const = 0;
+  virtual bool Applies(const trace::TraceSample&) const { return true; }
   virtual std::string Detail(double value, double limit, bool rail) const = 0;
 
  private:
@@ -99,6 +101,9 @@ class TorqueRule final : public JointLoadRule {
   const trace::JointVector& Values(const trace::TraceSample& s) const override {
     return s.joint_torques;
   }
+  // The torques are computed on the executor's grid (line ends, events, the IK grid), not at
+  // the collision subdivision's extra samples between them.
+  bool Applies(const trace::TraceSample& s) const override { return !s.collision_probe; }
   std::string Detail(double v, double limit, bool rail) const override {
     return rail ? Fmt("%.4g N, limit %.4g N", std::abs(v), limit)
                 : Fmt("%.4g N m, limit %.4g N m", std::abs(v), limit);

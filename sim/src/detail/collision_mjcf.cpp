@@ -29,9 +29,29 @@ Eigen::Isometry3d PoseOf(const mjtNum* pos, const mjtNum* quat) {
 
 }  // namespace
 
+std::string WithoutGeoms(const std::string& xml) {
+  std::string out;
+  out.reserve(xml.size());
+  std::size_t at = 0;
+  for (std::size_t g = xml.find("<geom"); g != std::string::npos; g = xml.find("<geom", at)) {
+    out.append(xml, at, g - at);
+    const std::size_t close = xml.find('>', g);
+    if (close == std::string::npos) return xml;  // malformed: let the compiler say so
+    at = close + 1;
+    if (xml[close - 1] != '/') {  // <geom ...> ... </geom>
+      const std::size_t end = xml.find("</geom>", close);
+      if (end == std::string::npos) return xml;
+      at = end + std::strlen("</geom>");
+    }
+  }
+  out.append(xml, at, std::string::npos);
+  return out;
+}
+
 MjModelPtr CompileCellWithHead(const std::filesystem::path& cell_mjcf,
                                const std::filesystem::path& head_mjcf, DiagnosticSink& sink,
-                               const std::string& head_root_extra, const std::string& code) {
+                               const std::string& head_root_extra, const std::string& code,
+                               bool strip_geoms) {
   const auto cell = ReadFile(cell_mjcf);
   const auto head = ReadFile(head_mjcf);
   if (!cell || !head) {
@@ -51,6 +71,7 @@ MjModelPtr CompileCellWithHead(const std::filesystem::path& cell_mjcf,
   // Tag the head's bodies so its geoms can be told apart after compilation.
   text.replace(at, marker.size(),
                "<body name=\"stitchsim_head_root\">" + head_root_extra + inner + "</body>");
+  if (strip_geoms) text = WithoutGeoms(text);
   auto vfs = std::make_unique<mjVFS>();  // megabytes: keep it off the stack
   mj_defaultVFS(vfs.get());
   const char* name = "stitchsim_collision.xml";

@@ -40,7 +40,13 @@ using MjModelPtr = std::unique_ptr<mjModel, MjModelDeleter>;
 MjModelPtr CompileCellWithHead(const std::filesystem::path& cell_mjcf,
                                const std::filesystem::path& head_mjcf, DiagnosticSink& sink,
                                const std::string& head_root_extra = {},
-                               const std::string& code = "collision-mjcf");
+                               const std::string& code = "collision-mjcf",
+                               bool strip_geoms = false);
+
+/// `xml` without its <geom> elements (bodies, joints, sites, inertials kept): a model for
+/// kinematics and dynamics only (masses come from <inertial>), whose mj_kinematics does not
+/// pose a geom it never uses.
+std::string WithoutGeoms(const std::string& xml);
 
 /// Compiles `cell_mjcf` with `head_mjcf` inserted at <!--STITCHSIM:HEAD--> and returns every
 /// geom; `link_names` are the URDF links (bodies of those names share their frames). Codes

@@ -43,7 +43,8 @@ class MujocoCell {
   std::unique_ptr<MujocoCell> Share() const;
 
   // Kinematics ----------------------------------------------------------------------------
-  /// qpos = q (model order), qvel = 0, mj_kinematics. The same q as the last call is free.
+  /// qpos = q (model order), mj_kinematics, the frames below read out. The frames of the last
+  /// 8 joint vectors are kept: asking again about one of them is free.
   void SetJoints(const JointVector& q);
   /// After SetJoints: world poses, metres.
   Eigen::Isometry3d ToolWorld() const;          ///< the head's tool_point site
@@ -55,8 +56,12 @@ class MujocoCell {
 
   // Dynamics ------------------------------------------------------------------------------
   /// Joint forces (model order: N for the rail, N m) that move the cell with q, qd, qdd:
-  /// mj_inverse (inertia with armature, gravity, Coriolis and centrifugal, joint damping).
+  /// what mj_inverse gives on this model (inertia with armature, gravity, Coriolis and
+  /// centrifugal, joint damping), computed by the Newton-Euler pass at about half its cost.
   JointVector InverseDynamics(const JointVector& q, const JointVector& qd, const JointVector& qdd);
+  /// The same by mj_inverse itself (tests hold the two equal).
+  JointVector InverseDynamicsReference(const JointVector& q, const JointVector& qd,
+                                       const JointVector& qdd);
   /// The servos; false (and a diagnostic) when the MJCF lacks one.
   bool HasServos() const;
   const ServoGains& Servo(int joint) const;

@@ -53,6 +53,7 @@ class TimingSink final : public TraceSink {
   void CloseLine();
   void PopPlanned();
   void Emit(Line& line, const Line* next);
+  void Recycle();  ///< the front line, handed on, to the spares
   void Derivatives(Line& line);
   TimedLineInput InputOf(const Line& line) const;
   void TimeSample(const Line& line, const Line* next, TraceSample& s);
@@ -63,6 +64,7 @@ class TimingSink final : public TraceSink {
   TraceSink& next_;
   TimeLawPlanner planner_;
   std::deque<Line> lines_;  ///< pushed, in programme order; front may be planned
+  std::vector<Line> spare_;  ///< lines handed on, their buffers kept for reuse (no mallocs)
   bool open_ = false;       ///< the back line is still receiving samples
   bool have_joints_ = false;
   JointVector last_joints_ = JointVector::Zero();  ///< last usable solved joints seen

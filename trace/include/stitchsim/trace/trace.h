@@ -110,6 +110,9 @@ struct TraceSample {
   ArmConfiguration configuration;
   /// Contacts and clearance at `joints` (collision.* rules).
   SampleCollision collision;
+  /// An extra sample the collision subdivision inserted between the grid's (so no contact
+  /// slips between samples): joints and contacts, but no torques (kin.torque reads the grid).
+  bool collision_probe = false;
   /// The timed trajectory (sim::TimingSink, the controller's time law): when set, `timed_s` is
   /// the time on it since the first line; with joints, the joint velocities (m/s, rad/s),
   /// accelerations (m/s^2, rad/s^2) and the torques/forces MuJoCo's inverse dynamics needs to
