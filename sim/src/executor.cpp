@@ -190,11 +190,11 @@ class Executor {
     t.time_s = time_s_ + s * p.rec.duration_s;
     t.source_line = p.rec.source_line;
     t.line_fraction = s;
-    t.event = first ? SampleEvent::kLineStart
-                    : (last ? SampleEvent::kLineEnd
-                            : (tag == SampleEvent::kLineEnd || tag == kCollisionProbe
-                                   ? SampleEvent::kNone
-                                   : tag));
+    t.event =
+        first ? SampleEvent::kLineStart
+              : (last ? SampleEvent::kLineEnd
+                      : (tag == SampleEvent::kLineEnd || tag == kCollisionProbe ? SampleEvent::kNone
+                                                                                : tag));
     t.collision_probe = tag == kCollisionProbe && !first && !last;
     t.tool_part = process::InterpolatePose(from.tool, to.tool, s);
     t.drive_mm = from.drive + s * p.du;

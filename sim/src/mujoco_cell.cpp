@@ -126,6 +126,16 @@ void ReadServos(MujocoModel& mm) {
   }
 }
 
+// qpos, qvel and qacc from model-order joint vectors.
+void SetState(const MujocoModel& mm, mjData& d, const JointVector& q, const JointVector& qd,
+              const JointVector& qdd) {
+  for (int j = 0; j < kNumJoints; ++j) {
+    d.qpos[mm.qpos[j]] = q[j];
+    d.qvel[mm.dof[j]] = qd[j];
+    d.qacc[mm.dof[j]] = qdd[j];
+  }
+}
+
 }  // namespace
 
 MujocoCell::MujocoCell(std::shared_ptr<const MujocoModel> model)
@@ -211,11 +221,7 @@ JointVector MujocoCell::InverseDynamics(const JointVector& q, const JointVector&
                                         const JointVector& qdd) {
   const mjModel& m = *model_->m;
   mjData& d = *data_->d;
-  for (int j = 0; j < kNumJoints; ++j) {
-    d.qpos[model_->qpos[j]] = q[j];
-    d.qvel[model_->dof[j]] = qd[j];
-    d.qacc[model_->dof[j]] = qdd[j];
-  }
+  SetState(*model_, d, q, qd, qdd);
   // What mj_inverse gives on this model (no constraints, springs or friction loss), for
   // half its cost: the recursive Newton-Euler pass (M qacc + gravity, Coriolis, centrifugal)
   // on the rigid bodies, plus each joint's armature (the rotors' inertia, which MuJoCo keeps
@@ -236,11 +242,7 @@ JointVector MujocoCell::InverseDynamicsReference(const JointVector& q, const Joi
                                                  const JointVector& qdd) {
   const mjModel& m = *model_->m;
   mjData& d = *data_->d;
-  for (int j = 0; j < kNumJoints; ++j) {
-    d.qpos[model_->qpos[j]] = q[j];
-    d.qvel[model_->dof[j]] = qd[j];
-    d.qacc[model_->dof[j]] = qdd[j];
-  }
+  SetState(*model_, d, q, qd, qdd);
   mj_inverse(&m, &d);
   JointVector tau;
   for (int j = 0; j < kNumJoints; ++j) tau[j] = d.qfrc_inverse[model_->dof[j]];

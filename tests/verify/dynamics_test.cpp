@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 #include <cstdio>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "detail/text_format.h"
 #include "stitchsim/verify/rule.h"
 
 namespace stitchsim::verify {
@@ -11,13 +12,8 @@ namespace {
 
 using scene::LimitKey;
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-
-std::string Fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
-  char buf[256];
-  std::snprintf(buf, sizeof(buf), format, a, b, c);
-  return buf;
-}
+using detail::Fmt;
+using detail::kRadToDeg;
 
 // Percent of a per-joint limit at each sample with timed joints; the worst joint is the subject.
 class JointLoadRule : public Rule {

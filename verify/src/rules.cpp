@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "afp_laid.h"
+#include "detail/text_format.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/verify/rule.h"
 
@@ -12,13 +13,8 @@ namespace {
 
 using scene::LimitKey;
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-
-std::string Fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
-  char buf[256];
-  std::snprintf(buf, sizeof(buf), format, a, b, c);
-  return buf;
-}
+using detail::Fmt;
+using detail::kRadToDeg;
 
 // ---------------------------------------------------------------------------------------------
 // Needle rules (the process model's window metrics).

@@ -3,6 +3,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 
 namespace stitchsim::verify::detail {
 
@@ -95,6 +96,12 @@ std::string Location(int line, long stitch) {
   if (line > 0) where = "line " + std::to_string(line);
   if (stitch > 0) where += (where.empty() ? "" : " ") + ("stitch " + std::to_string(stitch));
   return where.empty() ? "programme" : where;
+}
+
+std::string Fmt(const char* format, double a, double b, double c) {
+  char buf[256];
+  std::snprintf(buf, sizeof(buf), format, a, b, c);
+  return buf;
 }
 
 }  // namespace stitchsim::verify::detail

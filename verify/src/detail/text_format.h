@@ -23,5 +23,9 @@ std::string FormatNumber(double v);
 std::string Count(long n, std::string_view singular, std::string_view plural);
 /// "line L stitch S" (parts that are 0 left out).
 std::string Location(int line, long stitch);
+/// printf of up to three numbers into a string (the rules' messages).
+std::string Fmt(const char* format, double a, double b = 0.0, double c = 0.0);
+
+inline constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
 }  // namespace stitchsim::verify::detail

@@ -63,9 +63,9 @@ class TimingSink final : public TraceSink {
   TimingOptions options_;
   TraceSink& next_;
   TimeLawPlanner planner_;
-  std::deque<Line> lines_;  ///< pushed, in programme order; front may be planned
+  std::deque<Line> lines_;   ///< pushed, in programme order; front may be planned
   std::vector<Line> spare_;  ///< lines handed on, their buffers kept for reuse (no mallocs)
-  bool open_ = false;       ///< the back line is still receiving samples
+  bool open_ = false;        ///< the back line is still receiving samples
   bool have_joints_ = false;
   JointVector last_joints_ = JointVector::Zero();  ///< last usable solved joints seen
   double line_start_s_ = 0.0;                      ///< timed time at the front line's start
