@@ -35,6 +35,7 @@ void TimingSink::OnLine(const LineRecord& line) {
   l.node_s.clear();
   l.node_q.clear();
   l.planned = false;
+  l.transparent = false;
   l.rec = line;
   if (have_joints_) {
     l.node_s.push_back(0.0);
@@ -64,9 +65,17 @@ void TimingSink::Finish() {
   planner_.Flush();
   PopPlanned();
   while (!lines_.empty() && lines_.front().planned) {
-    Emit(lines_.front(), lines_.size() > 1 && lines_[1].planned ? &lines_[1] : nullptr);
+    const std::size_t k = NextMoving(0);
+    Emit(lines_.front(), k < lines_.size() && lines_[k].planned ? &lines_[k] : nullptr);
     Recycle();
   }
+}
+
+std::size_t TimingSink::NextMoving(std::size_t k) const {
+  for (std::size_t i = k + 1; i < lines_.size(); ++i) {
+    if (!lines_[i].transparent) return i;
+  }
+  return lines_.size();
 }
 
 // dq/ds at each node: one-sided at the ends, the three-point weighted slope inside; d2q/ds2
@@ -123,8 +132,17 @@ void TimingSink::CloseLine() {
   Line& l = lines_.back();
   Derivatives(l);
   l.input = InputOf(l);
-  planner_.Push(l.input);
   open_ = false;
+  const TimedLineInput& in = l.input;
+  l.transparent = !(in.programmed_duration_s > 0.0) && in.dq_ds_max.isZero(0.0) &&
+                  !(in.dwell_s > 0.0) && !in.stop_after;
+  if (l.transparent) {
+    l.profile = LineProfile{};
+    l.profile.source_line = in.source_line;
+    l.planned = true;
+  } else {
+    planner_.Push(in);
+  }
   PopPlanned();
 }
 
@@ -138,9 +156,12 @@ void TimingSink::PopPlanned() {
       break;
     }
   }
-  // A line goes out once its successor is planned too (its end sample carries the junction).
-  while (lines_.size() >= 2 && lines_[0].planned && lines_[1].planned) {
-    Emit(lines_[0], &lines_[1]);
+  // A line goes out once the next line that moves is planned too (the line's end sample
+  // carries the junction with it).
+  while (!lines_.empty() && lines_[0].planned) {
+    const std::size_t k = NextMoving(0);
+    if (k >= lines_.size() || !lines_[k].planned) break;
+    Emit(lines_[0], &lines_[k]);
     Recycle();
   }
 }
@@ -182,6 +203,15 @@ void TimingSink::TimeSample(const Line& l, const Line* next, TraceSample& s) {
   s.has_timing = true;
   s.timed_s = line_start_s_ + st.t;
   if (!trace::JointsUsable(s)) return;
+  if (l.transparent) {  // passed through at the pace of the lines around it
+    s.joint_velocities = carry_velocities_;
+    s.joint_accelerations = carry_accelerations_;
+    if (options_.torques && !s.collision_probe) {
+      s.joint_torques =
+          mujoco_.InverseDynamics(s.joints, s.joint_velocities, s.joint_accelerations);
+    }
+    return;
+  }
   const JointVector dq = AtFraction(l.node_s, l.node_dq, s.line_fraction);
   const JointVector ddq = AtFraction(l.node_s, l.node_ddq, s.line_fraction);
   s.joint_velocities = dq * st.s_dot;
@@ -199,6 +229,8 @@ void TimingSink::TimeSample(const Line& l, const Line* next, TraceSample& s) {
   if (options_.torques && !s.collision_probe) {
     s.joint_torques = mujoco_.InverseDynamics(s.joints, s.joint_velocities, s.joint_accelerations);
   }
+  carry_velocities_ = s.joint_velocities;
+  carry_accelerations_ = s.joint_accelerations;
 }
 
 }  // namespace stitchsim::sim

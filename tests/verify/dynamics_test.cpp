@@ -201,6 +201,31 @@ TEST(dynamics, RailMoveIsTheHandTrapezoid) {
               1.0, 1e-6);
 }
 
+// A decoupled straight row repeats each stitch's pose in a rotation line that does not turn:
+// the controller passes through those blocks, so the row takes as long as the coupled one.
+TEST(dynamics, BlocksThatRepeatThePoseDoNotStopTheArm) {
+  const Loaded l = Load("flat_straight");
+  double timed[2] = {0, 0};
+  int k = 0;
+  for (planner::Mode mode : {planner::Mode::kCoupled, planner::Mode::kDecoupled}) {
+    DiagnosticSink sink;
+    planner::StitchPlanOptions opt;
+    opt.mode = mode;
+    auto pl = planner::StitchPathPlanner::Create(*l.scene, *l.scene->FindPath("row"), opt, sink);
+    ASSERT_TRUE(pl.has_value());
+    std::ostringstream out;
+    planner::WriteStitchProgram(*pl, *l.scene, "row", program::Dialect::Default(), out);
+    const Outcome r = Execute(l, out.str(), pl->StitchLengthMm(), false);
+    ASSERT_TRUE(r.ok) << r.diagnostics;
+    timed[k++] = r.timed_s;
+  }
+  EXPECT_NEAR(timed[1], timed[0], 1e-6 * timed[0]);
+  EXPECT_EQ(Worst(Execute(l, "G21 G90\nG1 X0 Y0 Z0 A0 B0 C0 F600\nG1 X10\nG1 X10\nG1 X20\nM30\n",
+                          5.0, false)
+                      .Rule("kin.acceleration")) < 100.0,
+            true);
+}
+
 // Newton on the rail: the carriage carries every link and the head, so the rail force is the
 // total moving mass (URDF inertials + head spec + the rail's armature) times the acceleration,
 // plus the viscous damping times the speed.

@@ -49,7 +49,12 @@ class TimingSink final : public TraceSink {
     TimedLineInput input;
     LineProfile profile;
     bool planned = false;
+    /// No motion, no dwell, no stop (a block that repeats the pose, e.g. a decoupled
+    /// programme's rotation line where the path does not turn): the controller passes through
+    /// it, so it does not go to the planner and the junction is between its neighbours.
+    bool transparent = false;
   };
+  std::size_t NextMoving(std::size_t k) const;  ///< first non-transparent line after k
   void CloseLine();
   void PopPlanned();
   void Emit(Line& line, const Line* next);
@@ -69,6 +74,8 @@ class TimingSink final : public TraceSink {
   bool have_joints_ = false;
   JointVector last_joints_ = JointVector::Zero();  ///< last usable solved joints seen
   double line_start_s_ = 0.0;                      ///< timed time at the front line's start
+  /// The last sample handed on with joints: a transparent line's samples carry its motion.
+  JointVector carry_velocities_ = JointVector::Zero(), carry_accelerations_ = JointVector::Zero();
   double cycle_time_s_ = 0.0;
 };
 
