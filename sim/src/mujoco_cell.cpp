@@ -290,7 +290,7 @@ void MujocoCell::StepTo(double t_end, const JointVector& q_ref, const JointVecto
   JointVector velocity;
   while (d.time + 0.5 * dt <= t_end) {
     mj_step1(&m, &d);  // positions and velocities: qfrc_bias (gravity, Coriolis) is current
-    const JointVector ref = reference(d.time + dt, velocity);
+    const JointVector ref = reference(d.time, velocity);  // at the state's own time
     for (int j = 0; j < kNumJoints; ++j) {
       const int a = model_->servo[j];
       if (a < 0) continue;

@@ -408,6 +408,40 @@ TEST(dynamics, PayloadIsTheLoadDiagramByHand) {
   EXPECT_EQ(p->findings.front().line, 2);  // the first motion line
 }
 
+// dyn.tracking against the servo's closed form: on the rail move at cruise the servo feeds
+// the velocity and the bias forward but not the joint's viscous damping, so it settles where
+// kp e = damping v: a lag of damping v / kp along the rail (the arm stands still). And the
+// rule fires on the moving line once its limit is below that lag.
+TEST(dynamics, TrackingLagIsTheServoClosedFormAndFiresOnItsLine) {
+  Loaded l = Load("circle_8in");
+  const sim::CellSetup cell = sim::MakeCellSetup(*l.robot, *l.scene);
+  DiagnosticSink sink;
+  auto mj = sim::MujocoCell::Create(*l.scene, *l.robot, cell, sink);
+  ASSERT_NE(mj, nullptr);
+  const double v = 0.1;  // m/s: 6000 mm/min
+  const double lag_mm =
+      1000.0 * l.robot->dampings()[trace::kRailX] * v / mj->Servo(trace::kRailX).kp;
+  const Outcome r = Execute(l, Move({-500, 0, 0}, {500, 0, 0}, 6000.0), 5.0, true);
+  ASSERT_TRUE(r.ok) << r.diagnostics;
+  int checked = 0;
+  for (const auto& s : r.capture.samples) {
+    // Mid-cruise: the ramps end at s = 0.0125 and 0.9875; the servo settles in ~0.05 s.
+    if (s.source_line != 3 || s.line_fraction < 0.1 || s.line_fraction > 0.9) continue;
+    ASSERT_TRUE(s.tracked);
+    EXPECT_NEAR(s.tracking_error_mm, lag_mm, 0.02 * lag_mm) << s.line_fraction;
+    ++checked;
+  }
+  EXPECT_GT(checked, 30);
+  std::printf("rail lag at cruise: %.3e mm (closed form %.3e mm)\n", Worst(r.Rule("dyn.tracking")),
+              lag_mm);
+  l.scene->limits.Set(scene::LimitKey::kTrackingErrorMm, 0.5 * lag_mm);
+  const Outcome tight = Execute(l, Move({-500, 0, 0}, {500, 0, 0}, 6000.0), 5.0, true);
+  const RuleSummary* t = tight.Rule("dyn.tracking");
+  ASSERT_NE(t, nullptr);
+  ASSERT_GT(t->errors, 0);
+  EXPECT_EQ(t->findings.front().line, 3);
+}
+
 // ---------------------------------------------------------------------------------------------
 // The dynamic mode on the decoupled 8 in circle: the servos lag; at a stitch rate well above
 // the head's the lag breaks the side-force limit, which kinematic mode cannot see.
