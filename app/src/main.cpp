@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   stitchsim::app::AddCheckCommand(app, exit_code);
   stitchsim::app::AddKinematicsCommands(app, exit_code);
   stitchsim::app::AddVerifyCommand(app, exit_code);
+  stitchsim::app::AddReportCommand(app, exit_code);
   stitchsim::app::AddRecheckCommand(app, exit_code);
   stitchsim::app::AddExportStepCommand(app, exit_code);
   stitchsim::app::AddSequenceCommand(app, exit_code);

@@ -3,13 +3,14 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <optional>
 
+#include "chunked_cmd.h"
 #include "cli_common.h"
 #include "commands.h"
 #include "stitchsim/common/files.h"
@@ -23,6 +24,7 @@
 #include "stitchsim/sim/timing.h"
 #include "stitchsim/trace/trace_file.h"
 #include "stitchsim/verify/verifier.h"
+#include "verify_session.h"
 
 namespace stitchsim::app {
 namespace {
@@ -38,44 +40,13 @@ struct VerifyArgs {
   bool no_collision = false;
   bool allow_mismatch = false;
   bool dynamics = false;
+  bool quiet = false;
+  int jobs = 0;       ///< 0: the number of cores
+  std::string shard;  ///< "I/N"
+  std::string part;   ///< --shard: the partial result file
+  int chunk_lines = 16384;
+  int warm_lines = 256;
 };
-
-// The cell as MuJoCo runs it: one working state for the executor's kinematics (and the
-// collision world's frames), one for the timing sink's inverse dynamics, and with
-// --dynamics two for the physics and the poses of its reference and actual joints.
-struct MujocoCells {
-  std::unique_ptr<sim::MujocoCell> kinematics, timing, physics, physics_poses;
-};
-
-std::optional<MujocoCells> MakeMujocoCells(const LoadedScene& ls, const sim::CellSetup& cell,
-                                           bool dynamics) {
-  BoundedDiagnosticSink diagnostics(20);
-  MujocoCells cells;
-  cells.kinematics = sim::MujocoCell::Create(*ls.scene, *ls.robot, cell, diagnostics);
-  if (PrintDiagnostics(diagnostics) || !cells.kinematics) return std::nullopt;
-  cells.timing = cells.kinematics->Share();
-  if (dynamics) {
-    if (!cells.kinematics->HasServos()) {
-      PrintError("mujoco-model", "--dynamics: " + ls.scene->cell_mjcf.string() +
-                                     " lacks a servo actuator (servo_<joint>) for every joint");
-      return std::nullopt;
-    }
-    cells.physics = cells.kinematics->Share();
-    cells.physics_poses = cells.kinematics->Share();
-  }
-  return cells;
-}
-
-sim::TimingOptions TimingOptionsFor(const program::Dialect& dialect,
-                                    const sim::ExecuteOptions& execute) {
-  sim::TimingOptions t;
-  t.law.ramp_time_s = dialect.trajectory.ramp_time_s;
-  t.law.continuous = dialect.trajectory.continuous;
-  t.law.look_ahead_lines = dialect.trajectory.look_ahead_lines;
-  t.settle_time_s = execute.settle_time_s;
-  t.torques = !std::getenv("X_NOTQ");
-  return t;
-}
 
 // The programme's header against the scene it is verified on: a programme written for
 // another scene or head is bad input (both names given), unless overridden on purpose.
@@ -296,71 +267,25 @@ int WriteSnapshots(const LoadedScene& ls, const sim::CellSetup& cell,
   return kExitOk;
 }
 
-int RunVerify(const VerifyArgs& a) {
-  if (!OutputsDistinct(
-          {{"--report", a.report_json}, {"--junit", a.junit}, {"--save-trace", a.save_trace}})) {
-    return kExitBadInput;
-  }
-  auto ls = LoadSceneAndRobot(a.scene);
-  if (!ls) return kExitBadInput;
-  const std::optional<program::Dialect> custom = DialectOption(a.dialect);
-  if (!custom) return kExitBadInput;
-  const program::Dialect& dialect = *custom;
-  // The programme is read once, front to back (a pipe works): the header first, then the run.
-  if (!ProgramInputOk(a.program)) return kExitBadInput;
-  std::ifstream in(a.program, std::ios::binary);
-  if (!in) {
-    PrintError("io-missing-file", "cannot open programme " + a.program);
-    return kExitBadInput;
-  }
-  BoundedDiagnosticSink diagnostics(100);
-  sim::ProgramInput input(in, dialect, a.program, diagnostics);
-  const program::ProgramHeader& header = input.Header();
-  const std::optional<program::ProgramIdentity> id =
-      program::ReadIdentity(header, a.program, diagnostics);
-  if (!id || (!a.allow_mismatch &&
-              !HeaderFitsScene(*id, header, a.program, *ls->scene, a.scene, diagnostics))) {
-    PrintDiagnostics(diagnostics);
-    return kExitBadInput;
-  }
-  const double stitch_length = id->stitch_length_mm.value_or(ls->scene->nominal_stitch_length_mm);
-  const sim::CellSetup cell = sim::MakeCellSetup(*ls->robot, *ls->scene);
-  const process::ProcessModel model = process::MakeProcessModel(*ls->scene, stitch_length);
-  std::unique_ptr<sim::CollisionWorld> collision;
-  if (!a.no_collision) {
-    BoundedDiagnosticSink world_diagnostics(20);
-    collision = sim::CollisionWorld::Create(*ls->scene, *ls->robot, world_diagnostics);
-    if (PrintDiagnostics(world_diagnostics) || !collision) return kExitBadInput;
-  }
-  std::optional<MujocoCells> mj = MakeMujocoCells(*ls, cell, a.dynamics);
-  if (!mj) return kExitBadInput;
-  if (collision && !std::getenv("X_NOCOLMJ")) collision->UseKinematics(mj->kinematics.get());
-  trace::CellDescription cell_description = sim::DescribeCell(*ls->robot, collision.get());
-  cell_description.timed = true;
-  cell_description.dynamic = a.dynamics;
-  verify::RuleContext ctx{ls->scene.get(), &cell_description, &model};
-  ctx.declared_stitches = id->stitches;
-  sim::ExecuteOptions execute_options = sim::ExecuteOptionsFor(*ls->scene);
-  execute_options.collision = collision.get();
-  execute_options.allow_head_mismatch = a.allow_mismatch;
-  execute_options.mujoco = std::getenv("X_NOEXMJ") ? nullptr : mj->kinematics.get();
-  execute_options.solve_every_sample = a.dynamics;
-  verify::Verifier verifier(ctx, !a.snapshots.empty());
+// The serial run (--dynamics, --save-trace, a programme read from a pipe): executor ->
+// progress -> timing (time law, inverse dynamics) [-> physics] -> verifier, trace file.
+int RunSerial(const VerifyArgs& a, VerifySession& vs, sim::ProgramInput& input,
+              const program::ProgramIdentity& id, BoundedDiagnosticSink& diagnostics) {
+  verify::Verifier verifier(vs.Rules(), !a.snapshots.empty());
   std::unique_ptr<trace::TraceFileWriter> saved;
   if (!a.save_trace.empty()) {
-    saved = OpenTrace(a, *ls, cell, cell_description, *id, stitch_length);
+    saved = OpenTrace(a, vs.ls, vs.cell, vs.description, id, vs.stitch_length_mm);
     if (!saved) return kExitBadInput;
   }
-  // executor -> progress -> timing (time law, inverse dynamics) [-> physics] -> verifier, file
   TeeSink tee(verifier, saved.get());
   std::optional<sim::DynamicsSink> physics;
-  if (a.dynamics) physics.emplace(*mj->physics, *mj->physics_poses, tee);
-  sim::TimingSink timing(*mj->timing, *ls->robot, TimingOptionsFor(dialect, execute_options),
+  if (a.dynamics) physics.emplace(*vs.mj.physics, *vs.mj.physics_poses, tee);
+  sim::TimingSink timing(*vs.mj.timing, *vs.ls.robot, vs.timing,
                          physics ? static_cast<trace::TraceSink&>(*physics) : tee);
-  ProgressSink progress(timing, ::isatty(2) != 0);
+  ProgressSink progress(timing, !a.quiet && ::isatty(2) != 0);
   const auto started = std::chrono::steady_clock::now();
   const sim::ExecutionSummary run =
-      sim::ExecuteProgram(cell, model, input, execute_options, diagnostics, progress);
+      sim::ExecuteProgram(vs.cell, *vs.model, input, vs.execute, diagnostics, progress);
   progress.Done();
   if (PrintDiagnostics(diagnostics) || !run.ok) return kExitBadInput;
   timing.Finish();
@@ -372,14 +297,102 @@ int RunVerify(const VerifyArgs& a) {
       return kExitBadInput;
     }
   }
-
-  verify::Report report = RunReport(a.program, a.scene, *ls->scene, stitch_length, summary);
+  verify::Report report = RunReport(a.program, a.scene, *vs.ls.scene, vs.stitch_length_mm, summary);
   verifier.Finish(report);
   if (WriteReports(report, a.report_json, a.junit) != kExitOk) return kExitBadInput;
-  if (!a.snapshots.empty() && WriteSnapshots(*ls, cell, verifier, a.snapshots) != kExitOk) {
+  if (!a.snapshots.empty() && WriteSnapshots(vs.ls, vs.cell, verifier, a.snapshots) != kExitOk) {
     return kExitBadInput;
   }
   return report.errors == 0 ? kExitOk : kExitFindings;
+}
+
+// The chunked run (sim/chunk.h, chunked_verify.h): the first pass on its own thread cuts the
+// programme, `jobs` workers run the chunks, this thread merges them; or, with --shard, this
+// process's share of the chunks into a partial result file.
+int RunChunked(const VerifyArgs& a, VerifySession& vs, sim::ProgramInput& input,
+               BoundedDiagnosticSink& diagnostics) {
+  ChunkedInvocation inv;
+  inv.program = a.program;
+  inv.scene = a.scene;
+  inv.dialect = a.dialect;
+  inv.no_collision = a.no_collision;
+  inv.allow_mismatch = a.allow_mismatch;
+  inv.quiet = a.quiet;
+  inv.jobs = a.jobs;
+  if (!a.shard.empty() && !ParseShard(a.shard, inv.shard, inv.shards)) return kExitBadInput;
+  inv.part = a.part;
+  inv.chunk_lines = a.chunk_lines;
+  inv.warm_lines = a.warm_lines;
+  ChunkedOutcome out;
+  const int rc = RunChunkedVerify(inv, vs, input, diagnostics, out);
+  if (rc != kExitOk || !a.shard.empty()) return rc;
+  verify::Report report =
+      RunReport(a.program, a.scene, *vs.ls.scene, vs.stitch_length_mm, out.summary);
+  out.verifier->Finish(report);
+  if (WriteReports(report, a.report_json, a.junit) != kExitOk) return kExitBadInput;
+  if (!a.snapshots.empty() &&
+      WriteSnapshots(vs.ls, vs.cell, *out.verifier, a.snapshots) != kExitOk) {
+    return kExitBadInput;
+  }
+  return report.errors == 0 ? kExitOk : kExitFindings;
+}
+
+int RunVerify(const VerifyArgs& a) {
+  if (!OutputsDistinct({{"--report", a.report_json},
+                        {"--junit", a.junit},
+                        {"--save-trace", a.save_trace},
+                        {"--part", a.part}})) {
+    return kExitBadInput;
+  }
+  if (a.shard.empty() != a.part.empty()) {
+    PrintError("cli-usage", "--shard I/N and --part FILE go together");
+    return kExitBadInput;
+  }
+  if (!a.shard.empty() && (a.dynamics || !a.save_trace.empty() || !a.report_json.empty() ||
+                           !a.junit.empty() || !a.snapshots.empty())) {
+    PrintError("cli-usage",
+               "--shard writes a partial result (--part) only: reports come from `stitchsim "
+               "report merge`; --dynamics and --save-trace run in one process");
+    return kExitBadInput;
+  }
+  auto ls = LoadSceneAndRobot(a.scene);
+  if (!ls) return kExitBadInput;
+  const std::optional<program::Dialect> dialect = DialectOption(a.dialect);
+  if (!dialect) return kExitBadInput;
+  // The programme is read once, front to back (a pipe works): the header first, then the run.
+  if (!ProgramInputOk(a.program)) return kExitBadInput;
+  std::ifstream in(a.program, std::ios::binary);
+  if (!in) {
+    PrintError("io-missing-file", "cannot open programme " + a.program);
+    return kExitBadInput;
+  }
+  BoundedDiagnosticSink diagnostics(100);
+  sim::ProgramInput input(in, *dialect, a.program, diagnostics);
+  const program::ProgramHeader& header = input.Header();
+  const std::optional<program::ProgramIdentity> id =
+      program::ReadIdentity(header, a.program, diagnostics);
+  if (!id || (!a.allow_mismatch &&
+              !HeaderFitsScene(*id, header, a.program, *ls->scene, a.scene, diagnostics))) {
+    PrintDiagnostics(diagnostics);
+    return kExitBadInput;
+  }
+  const double stitch_length = id->stitch_length_mm.value_or(ls->scene->nominal_stitch_length_mm);
+  SessionOptions so;
+  so.no_collision = a.no_collision;
+  so.allow_mismatch = a.allow_mismatch;
+  so.dynamics = a.dynamics;
+  std::unique_ptr<VerifySession> vs =
+      MakeSession(std::move(*ls), *dialect, stitch_length, id->stitches, so);
+  if (!vs) return kExitBadInput;
+  // Chunks reopen the programme by name: a regular file only.
+  const bool serial =
+      a.dynamics || !a.save_trace.empty() || !std::filesystem::is_regular_file(a.program);
+  if (serial && !a.shard.empty()) {
+    PrintError("cli-usage", "--shard needs the programme as a regular file");
+    return kExitBadInput;
+  }
+  return serial ? RunSerial(a, *vs, input, *id, diagnostics)
+                : RunChunked(a, *vs, input, diagnostics);
 }
 
 }  // namespace
@@ -404,6 +417,23 @@ void AddVerifyCommand(CLI::App& app, int& exit_code) {
   cmd->add_flag("--dynamics", args->dynamics,
                 "Step MuJoCo's physics with the joint servos tracking the timed trajectory: the "
                 "needle rules see the arm's lag, dyn.tracking reports it");
+  cmd->add_option("--jobs,-j", args->jobs,
+                  "Worker threads (default: the number of cores); reports are the same for any "
+                  "number")
+      ->check(CLI::Range(0, 256));
+  cmd->add_option("--shard", args->shard,
+                  "I/N: verify the I-th of N shares of the programme (I = 1..N) into --part; "
+                  "`stitchsim report merge` makes the report (docs/ci.md)");
+  cmd->add_option("--part", args->part, "--shard: write the partial result here");
+  cmd->add_option("--chunk-lines", args->chunk_lines,
+                  "--jobs/--shard: cut the programme at the first safe point after every this "
+                  "many lines (reports do not depend on it; shards of one run must agree)")
+      ->check(CLI::Range(1, 1 << 30));
+  cmd->add_option("--warm-lines", args->warm_lines,
+                  "--jobs/--shard: lines each chunk runs before its own to rebuild the state a "
+                  "serial run carries there (a chunk that rebuilt it wrong runs again)")
+      ->check(CLI::Range(0, 1 << 30));
+  cmd->add_flag("--quiet,-q", args->quiet, "No progress on stderr");
   cmd->add_flag("--allow-mismatch", args->allow_mismatch,
                 "Verify a programme whose header names another scene or head, or that mounts "
                 "another head (T.. M6), on this scene's cell anyway");

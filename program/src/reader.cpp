@@ -283,6 +283,36 @@ ProgramReader::ProgramReader(std::istream& in, const Dialect& dialect, std::stri
                              DiagnosticSink& sink, int max_lines)
     : impl_(std::make_unique<Impl>(in, dialect, std::move(file_name), sink, max_lines)) {}
 
+ProgramReader::ProgramReader(std::istream& in, const Dialect& dialect, std::string file_name,
+                             DiagnosticSink& sink, const ReaderResume& at, int max_lines)
+    : ProgramReader(in, dialect, std::move(file_name), sink, max_lines) {
+  Impl& d = *impl_;
+  d.bytes_read = at.bytes;
+  d.line_number = at.line_number;
+  d.phase = static_cast<Impl::Phase>(at.phase);
+  d.had_opening = at.had_opening;
+  d.opening_line = at.opening_line;
+  d.last_content_line = at.last_content_line;
+  d.any_words = at.any_words;
+  d.header = at.header;
+  d.header_read = true;
+}
+
+ReaderResume ProgramReader::Resume() const {
+  const Impl& d = *impl_;
+  assert(!d.pending && "ReadHeader holds a block back: read it first");
+  ReaderResume r;
+  r.bytes = d.bytes_read;
+  r.line_number = d.line_number;
+  r.phase = static_cast<int>(d.phase);
+  r.had_opening = d.had_opening;
+  r.opening_line = d.opening_line;
+  r.last_content_line = d.last_content_line;
+  r.any_words = d.any_words;
+  r.header = d.header;
+  return r;
+}
+
 ProgramReader::~ProgramReader() = default;
 
 bool ProgramReader::Next(Block& block) {

@@ -48,20 +48,34 @@ class StartBranchSearch {
     return true;
   }
 
-  // The feasible start nearest home, if any.
-  std::optional<JointVector> Choose() const {
+  // The feasible start nearest home, if any, and its track's index.
+  std::optional<JointVector> Choose(int* track = nullptr) const {
     std::optional<JointVector> chosen;
     double chosen_cost = 1e300;
-    for (const Track& t : tracks_) {
-      const std::optional<JointVector> q = Place(t);
+    for (std::size_t i = 0; i < tracks_.size(); ++i) {
+      std::optional<JointVector> q = Place(tracks_[i]);
       if (!q) continue;
       const double cost = (*q - first_).segment<kNumArmJoints>(kA1).squaredNorm();
       if (cost < chosen_cost) {
         chosen_cost = cost;
         chosen = q;
+        if (track != nullptr) *track = static_cast<int>(i);
       }
     }
     return chosen;
+  }
+  // Every track's last pose, unwrapped from its start (arm joints).
+  std::vector<ArmJointVector> Positions() const {
+    std::vector<ArmJointVector> out;
+    for (const Track& t : tracks_) out.push_back(t.prev);
+    return out;
+  }
+  // Track `i`'s start (as Choose places it) carried to `position`, one of its later poses.
+  JointVector Carried(int i, const JointVector& start, const ArmJointVector& position) const {
+    JointVector q = start;
+    const Track& t = tracks_[static_cast<std::size_t>(i)];
+    for (int j = 0; j < kNumArmJoints; ++j) q[kA1 + j] += position[j] - t.start[j];
+    return q;
   }
 
  private:
@@ -140,6 +154,61 @@ class StartBranchSearch {
   double last_rot_ = 0.0;
 };
 
+}  // namespace
+
+struct StartBranchScan::Impl {
+  Impl(const CellSetup& cell, geom::EulerOrder o) : search(cell), order(o) {}
+  StartBranchSearch search;
+  geom::EulerOrder order;
+  struct Pending {
+    Eigen::Isometry3d tool;
+    double rot;
+  };
+  std::optional<Pending> pending;    // the last pose skipped (never skip the last one)
+  bool failed = false;               // the first pose has no solution
+  std::optional<JointVector> start;  // Finish's choice
+  int track = -1;                    // ... and its track
+};
+
+StartBranchScan::StartBranchScan(const CellSetup& cell, geom::EulerOrder order)
+    : impl_(std::make_unique<Impl>(cell, order)) {}
+StartBranchScan::~StartBranchScan() = default;
+
+void StartBranchScan::Visit(const program::MachineState& st) {
+  Impl& d = *impl_;
+  if (d.failed) return;
+  Eigen::Isometry3d tool = *program::ToolPoseOf(st, d.order);
+  tool.translation() /= 1000.0;  // metres
+  const double rot = st[Axis::kRotator].value_or(0.0) * kDeg;
+  if (d.search.BarelyMoved(tool, rot) && !st[Axis::kRail]) {
+    d.pending = Impl::Pending{tool, rot};
+    return;
+  }
+  d.pending.reset();
+  if (!d.search.Visit(tool, rot, st[Axis::kRail])) d.failed = true;
+}
+
+std::optional<JointVector> StartBranchScan::Finish() {
+  Impl& d = *impl_;
+  if (d.pending && !d.search.Visit(d.pending->tool, d.pending->rot, std::nullopt)) d.failed = true;
+  d.pending.reset();
+  if (d.failed || !d.search.Started()) return std::nullopt;
+  d.start = d.search.Choose(&d.track);
+  return d.start;
+}
+
+std::vector<ArmJointVector> StartBranchScan::Positions() const { return impl_->search.Positions(); }
+
+std::optional<JointVector> StartBranchScan::At(const std::vector<ArmJointVector>& positions) const {
+  const Impl& d = *impl_;
+  if (!d.start || d.track < 0 || static_cast<std::size_t>(d.track) >= positions.size()) {
+    return std::nullopt;
+  }
+  return d.search.Carried(d.track, *d.start, positions[static_cast<std::size_t>(d.track)]);
+}
+
+namespace {
+
 // Look-ahead over the line ends, as a controller plans before a long move: every arm
 // configuration at the first pose is followed continuously (angles unwrapped, limits
 // ignored); the start chosen is the one, shifted by whole turns where a joint allows, whose
@@ -150,13 +219,7 @@ std::optional<JointVector> ChooseStartBranch(const CellSetup& cell, const progra
   BoundedDiagnosticSink ignored(4);
   program::ProgramReader reader(in, dialect, file_name, ignored);
   program::ModalState state(dialect, file_name, ignored);
-  const geom::EulerOrder order = program::EulerOrderOf(dialect);
-  StartBranchSearch search(cell);
-  struct Pending {
-    Eigen::Isometry3d tool;
-    double rot;
-  };
-  std::optional<Pending> pending;  // the last pose skipped (never skip the last one)
+  StartBranchScan scan(cell, program::EulerOrderOf(dialect));
   program::Block block;
   while (reader.Next(block)) {
     const program::Step& step = state.Update(block);
@@ -166,19 +229,9 @@ std::optional<JointVector> ChooseStartBranch(const CellSetup& cell, const progra
     for (Axis a : {Axis::kX, Axis::kY, Axis::kZ, Axis::kA, Axis::kB, Axis::kC}) {
       if (!st[a]) return std::nullopt;
     }
-    Eigen::Isometry3d tool = *program::ToolPoseOf(st, order);
-    tool.translation() /= 1000.0;  // metres
-    const double rot = st[Axis::kRotator].value_or(0.0) * kDeg;
-    if (search.BarelyMoved(tool, rot) && !st[Axis::kRail]) {
-      pending = Pending{tool, rot};
-      continue;
-    }
-    pending.reset();
-    if (!search.Visit(tool, rot, st[Axis::kRail])) return std::nullopt;
+    scan.Visit(st);
   }
-  if (pending && !search.Visit(pending->tool, pending->rot, std::nullopt)) return std::nullopt;
-  if (!search.Started()) return std::nullopt;
-  return search.Choose();
+  return scan.Finish();
 }
 
 }  // namespace

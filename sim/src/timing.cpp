@@ -173,13 +173,45 @@ void TimingSink::Recycle() {
 
 void TimingSink::Emit(Line& l, const Line* next) {
   l.rec.timed_duration_s = l.profile.duration_s;
+  emitting_ = &l.profile;
   next_.OnLine(l.rec);
+  emitting_ = nullptr;
   for (TraceSample& s : l.samples) {
     TimeSample(l, next, s);
     next_.OnSample(s);
   }
   line_start_s_ += l.profile.duration_s;
-  cycle_time_s_ += l.profile.duration_s;
+  cycle_time_.Add(l.profile.duration_s);
+}
+
+namespace {
+
+template <typename T>
+void Put(std::string& out, const T& v) {
+  out.append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+
+}  // namespace
+
+std::string TimingSink::InputCarry() const {
+  std::string out;
+  Put(out, have_joints_);
+  Put(out, last_joints_);
+  return out;
+}
+
+std::string TimingSink::OutputCarry() const {
+  std::string out;
+  Put(out, carry_velocities_);
+  Put(out, carry_accelerations_);
+  if (emitting_ != nullptr) {
+    const LineProfile& p = *emitting_;
+    for (double v : {p.v_in, p.v_cruise, p.v_out, p.accel, p.t_accel, p.t_cruise, p.t_decel,
+                     p.duration_s, p.v_nominal}) {
+      Put(out, v);
+    }
+  }
+  return out;
 }
 
 namespace {

@@ -67,6 +67,12 @@ class ModalState {
 
   const MachineState& State() const { return state_; }        // after the last block
   const MachineState& Previous() const { return previous_; }  // before the last block
+  /// Takes up the states of another tracker (chunked verification resumes a programme in the
+  /// middle: the state after the last block read, and before it).
+  void Restore(const MachineState& state, const MachineState& previous) {
+    state_ = state;
+    previous_ = previous;
+  }
   /// Head orientation angles (A, B, C) in radians, if all three are known.
   std::optional<std::array<double, 3>> AnglesRad() const;
 

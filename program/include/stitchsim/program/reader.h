@@ -36,6 +36,19 @@ struct ProgramHeader {
   }
 };
 
+/// Where a reader stands between two lines: what it needs to go on reading the same file from
+/// there in another reader (chunked verification resumes a programme in the middle).
+struct ReaderResume {
+  std::uint64_t bytes = 0;  ///< offset of the next line in the file
+  int line_number = 0;      ///< lines read before it
+  int phase = 0;            ///< the '%' bookkeeping (reader-private values)
+  bool had_opening = false;
+  int opening_line = 0;
+  int last_content_line = 0;
+  bool any_words = false;
+  ProgramHeader header;
+};
+
 /// Reads blocks from a stream. Lines with an error are reported and skipped; blank lines and
 /// '%' marks are not returned. `dialect` and `sink` must outlive the reader.
 class ProgramReader {
@@ -43,6 +56,11 @@ class ProgramReader {
   /// More than `max_lines` lines is gcode-too-many-lines (reported once, reading stops).
   ProgramReader(std::istream& in, const Dialect& dialect, std::string file_name,
                 DiagnosticSink& sink, int max_lines = limits::kMaxProgramLines);
+  /// Resumes at `at` (from Resume() of a reader of the same file): `in` must stand at
+  /// `at.bytes`. The header counts as read.
+  ProgramReader(std::istream& in, const Dialect& dialect, std::string file_name,
+                DiagnosticSink& sink, const ReaderResume& at,
+                int max_lines = limits::kMaxProgramLines);
   ~ProgramReader();
   ProgramReader(const ProgramReader&) = delete;
   ProgramReader& operator=(const ProgramReader&) = delete;
@@ -59,6 +77,9 @@ class ProgramReader {
   const ProgramHeader& ReadHeader();
   /// Lines read so far (1-based number of the last line read).
   int LineCount() const;
+  /// Where the reader stands now, to resume there (after Next(), with no block held back by
+  /// ReadHeader).
+  ReaderResume Resume() const;
   /// Bytes consumed from the stream so far.
   std::uint64_t BytesRead() const;
   const std::string& FileName() const;

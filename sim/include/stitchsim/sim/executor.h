@@ -3,6 +3,8 @@
 // orientation by slerp, the drive axis U advancing linearly; the stitch-cycle phase and the
 // needles' in/out derived from U; rail + arm solved by IK. Streams a Trace.
 
+#include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -96,6 +98,11 @@ class ProgramInput {
   friend ExecutionSummary ExecuteProgram(const CellSetup&, const process::ProcessModel&,
                                          ProgramInput&, const ExecuteOptions&, DiagnosticSink&,
                                          TraceSink&);
+  friend struct ScanResult ScanProgram(const CellSetup&, const process::ProcessModel&,
+                                       ProgramInput&, const ExecuteOptions&,
+                                       const struct ScanOptions&, bool, DiagnosticSink&,
+                                       const std::function<void(const struct Chunk&)>&,
+                                       const std::function<void(std::uint64_t)>&);
   std::istream& in_;
   std::streampos origin_;  ///< where the programme starts; -1 when `in_` cannot seek
   const program::Dialect& dialect_;

@@ -6,8 +6,10 @@
 // It holds the lines of the look-ahead window (bounded memory) and forwards them in order.
 
 #include <deque>
+#include <string>
 #include <vector>
 
+#include "stitchsim/common/exact_sum.h"
 #include "stitchsim/sim/mujoco_cell.h"
 #include "stitchsim/sim/time_law.h"
 #include "stitchsim/sim/trace.h"
@@ -35,8 +37,14 @@ class TimingSink final : public TraceSink {
   void OnSample(const TraceSample& sample) override;
   /// The programme has ended: plans the last lines (ending at rest) and forwards everything.
   void Finish();
-  /// Cycle time on the time law (s): the sum of the lines' timed durations so far forwarded.
-  double CycleTime() const { return cycle_time_s_; }
+  /// Cycle time on the time law (s): the sum of the lines' timed durations so far forwarded
+  /// (summed exactly: chunked runs add their parts to the same value).
+  double CycleTime() const { return cycle_time_.Value(); }
+  /// Chunked runs (chunk.h): what the sink carries into the next line it takes in (the last
+  /// solved joints), and into the next line it hands on (the carried joint rates and the
+  /// profile of the line being handed on, read in the next sink's OnLine), as bytes.
+  std::string InputCarry() const;
+  std::string OutputCarry() const;
 
  private:
   struct Line {
@@ -76,7 +84,8 @@ class TimingSink final : public TraceSink {
   double line_start_s_ = 0.0;                      ///< timed time at the front line's start
   /// The last sample handed on with joints: a transparent line's samples carry its motion.
   JointVector carry_velocities_ = JointVector::Zero(), carry_accelerations_ = JointVector::Zero();
-  double cycle_time_s_ = 0.0;
+  ExactSum cycle_time_;
+  const LineProfile* emitting_ = nullptr;  ///< the profile of the line being handed on
 };
 
 }  // namespace stitchsim::sim

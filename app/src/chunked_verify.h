@@ -1,0 +1,114 @@
+#pragma once
+// verify --jobs / --shard: a programme's chunks (sim/chunk.h) run on worker threads, each
+// through its own executor, timing sink and verifier, and are merged in programme order into
+// the one verifier a serial run would have. A chunk is taken only when the state it rebuilt
+// in its warm-up equals, byte for byte, the state the chunk before it ended with; otherwise
+// it runs again from that chunk's own start (docs/ci.md, "How a programme is cut").
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stitchsim/common/exact_sum.h"
+#include "stitchsim/process/stitch_cycle.h"
+#include "stitchsim/program/dialect.h"
+#include "stitchsim/sim/chunk.h"
+#include "stitchsim/sim/collision.h"
+#include "stitchsim/sim/mujoco_cell.h"
+#include "stitchsim/sim/timing.h"
+#include "stitchsim/verify/verifier.h"
+
+namespace stitchsim::app {
+
+/// What every chunk's run is made from (read-only while workers run: each run makes its own
+/// collision and MuJoCo state from the prototypes with Share()).
+struct ChunkSetup {
+  const program::Dialect* dialect = nullptr;
+  std::string program_path;
+  const sim::CellSetup* cell = nullptr;
+  const sim::RobotModel* robot = nullptr;
+  const process::ProcessModel* process = nullptr;
+  const sim::CollisionWorld* collision = nullptr;  ///< null: --no-collision
+  const sim::MujocoCell* mujoco = nullptr;
+  sim::ExecuteOptions execute;
+  sim::TimingOptions timing;
+  verify::RuleContext rules;
+  bool keep_stitch_marks = false;
+};
+
+/// A chunk's state at one boundary: the executor's and the timing sink's input side when the
+/// executor takes the boundary line on, the timing sink's output side and the verifier's when
+/// the verifier takes it on.
+struct BoundaryState {
+  sim::ChunkCarry input;
+  std::string output;
+  bool operator==(const BoundaryState&) const = default;
+  std::string Hex() const;  ///< for partial files
+  /// What differs from `other`, for people ("" when equal).
+  std::string Difference(const BoundaryState& other) const;
+  static std::optional<BoundaryState> FromHex(const std::string& text);
+};
+
+/// One chunk as run.
+struct ChunkResult {
+  sim::Chunk chunk;          ///< its warm start may be an earlier chunk's (a re-run)
+  BoundaryState start, end;  ///< at chunk.first_line and chunk.end_line
+  std::unique_ptr<verify::Verifier> verifier;  ///< the chunk's lines only
+  ExactSum timed;                              ///< timed durations of the chunk's lines (s)
+  long lines = 0;                              ///< motion lines counted
+  bool ok = false;
+  std::string error;  ///< when !ok
+};
+
+/// Runs one chunk (any thread). `lines_done` (if set) counts the lines it has verified.
+ChunkResult RunChunk(const ChunkSetup& setup, const sim::Chunk& chunk,
+                     std::atomic<long>* lines_done);
+
+/// Merges chunk results in order (Add), checking each boundary; a chunk whose start differs
+/// from where the chunk before it ended is to be run again from that chunk's warm start.
+class ChunkMerger {
+ public:
+  enum class Outcome { kTaken, kRerun };
+  /// `result` must be the chunk after the last one taken.
+  Outcome Add(ChunkResult result);
+  /// The chunk to run again after kRerun: the next chunk, from the last taken chunk's start.
+  sim::Chunk Rerun(const sim::Chunk& next) const;
+  int Taken() const { return taken_; }
+  std::unique_ptr<verify::Verifier> TakeVerifier() { return std::move(verifier_); }
+  const ExactSum& Timed() const { return timed_; }
+  const ChunkResult* Last() const { return last_ ? &*last_ : nullptr; }
+  const BoundaryState& FirstStart() const { return first_start_; }
+  /// The first boundary that did not match, and what differed (empty: none).
+  const std::string& FirstMismatch() const { return first_mismatch_; }
+
+ private:
+  std::unique_ptr<verify::Verifier> verifier_;
+  ExactSum timed_;
+  int taken_ = 0;
+  std::optional<ChunkResult> last_;  ///< without its verifier (absorbed)
+  BoundaryState first_start_;
+  std::string first_mismatch_;
+};
+
+struct ChunkedRun {
+  bool ok = false;
+  std::string error;
+  std::unique_ptr<verify::Verifier> verifier;  ///< the merged verifier
+  ExactSum timed;
+  int reruns = 0;
+  std::string first_mismatch;  ///< what differed at the first chunk run again
+  BoundaryState start, end;    ///< of the first and the last chunk run
+};
+
+/// Runs chunks on `jobs` threads and merges them in index order: `next_chunk` (called from the
+/// workers, one at a time) blocks until the next chunk is known and returns nullopt when there
+/// are no more; they are consecutive, from index 0 when `starts_at_zero` (chunk 0 may come
+/// last), else from the first one given. `tick` is called about twice a second.
+ChunkedRun RunChunks(const ChunkSetup& setup, int jobs, bool starts_at_zero,
+                     const std::function<std::optional<sim::Chunk>()>& next_chunk,
+                     std::atomic<long>* lines_done, const std::function<void()>& tick);
+
+}  // namespace stitchsim::app
