@@ -43,6 +43,7 @@ class CompactionRule final : public Rule {
              "%"),
         laid_(std::move(laid)) {
     summary_.error_limit = 100.0;
+    mergeable_ = false;  // judged over whole plies (Rule::Mergeable)
     for (std::size_t i = 0; i < kMeasures.size(); ++i) {
       limits_[i] = ctx.scene->limits.Value(kMeasures[i].key);
       AddSubject(kMeasures[i].subject, 100.0, std::nullopt);

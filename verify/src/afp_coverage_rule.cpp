@@ -66,6 +66,7 @@ class CoverageRule final : public Rule {
         max_bare_(ctx.scene->limits.Value(scene::LimitKey::kAfpCoverageMaxBarePct)),
         max_doubled_(ctx.scene->limits.Value(scene::LimitKey::kAfpCoverageMaxDoubledPct)) {
     summary_.error_limit = max_bare_;
+    mergeable_ = false;  // judged over whole plies (Rule::Mergeable)
   }
 
   void OnLine(const trace::LineRecord& record) override {

@@ -101,6 +101,7 @@ class CourseEdgeRule final : public Rule {
         hash_(2.5 * width_mm_) {
     summary_.error_limit = ctx.scene->limits.Get(gap ? scene::LimitKey::kAfpGapMaxMm
                                                      : scene::LimitKey::kAfpOverlapMaxMm);
+    mergeable_ = false;  // judged over whole plies (Rule::Mergeable)
     for (const scene::PlySpec& ply : ctx.scene->plies) boundaries_.push_back(ply.boundary_uv);
   }
 

@@ -75,6 +75,8 @@ class SteeringRadiusRule final : public Rule {
         baseline_mm_(laid_->Layout().width_mm) {
     const std::optional<double> given = ctx.scene->limits.Get(scene::LimitKey::kAfpSteeringMinMm);
     summary_.error_limit = given ? *given : ctx.scene->head.afp.min_steering_radius_mm;
+    worst_is_smallest_ = true;
+    mergeable_ = false;  // judged over whole plies (Rule::Mergeable)
     for (int t = 1; t <= laid_->Layout().tows; ++t) {
       AddSubject("tow " + std::to_string(t), summary_.error_limit, std::nullopt);
     }

@@ -6,6 +6,7 @@
 #include <set>
 #include <utility>
 
+#include "detail/carry_bytes.h"
 #include "stitchsim/verify/rule.h"
 
 namespace stitchsim::verify {
@@ -36,6 +37,7 @@ class ContactRule final : public Rule {
     summary_.error_limit = 0.0;
   }
   void OnSample(const trace::TraceSample& s) override {
+    sample_line_ = s.source_line;
     if (!s.collision.checked) return;
     const trace::SampleCollision& r = s.collision;
     Counted();
@@ -67,11 +69,29 @@ class ContactRule final : public Rule {
     }
   }
 
+  // Carry: the pairs already recorded on the line, while it is the line being sampled.
+  void SaveCarry(std::string& out) const override {
+    const bool current = line_ == sample_line_ && line_ >= 0;
+    detail::AppendBytes(out, current ? line_ : -1);
+    if (!current) return;
+    for (const std::string& pair : seen_) detail::AppendString(out, pair);
+  }
+
+ protected:
+  void AbsorbExtra(const Rule& later) override {
+    const auto& l = dynamic_cast<const ContactRule&>(later);
+    if (l.sample_line_ < 0) return;
+    line_ = l.line_;
+    seen_ = l.seen_;
+    sample_line_ = l.sample_line_;
+  }
+
  private:
-  const trace::CellDescription& cell_;
-  trace::ContactClass kind_;
-  int line_ = -1;
-  std::set<std::string> seen_;
+  const trace::CellDescription& cell_;  // config
+  trace::ContactClass kind_;            // config
+  int line_ = -1;                       // carry: the line seen_ is of
+  std::set<std::string> seen_;          // carry: body pairs recorded on line_
+  int sample_line_ = -1;                // carry: the line of the last sample
 };
 
 // Warns when the smallest distance between bodies that may not touch falls under the margin;
@@ -83,8 +103,10 @@ class ClearanceRule final : public Rule {
              "smallest distance between bodies that must not touch, under the margin (mm)", "mm"),
         cell_(*ctx.cell) {
     summary_.warning_limit = ctx.scene->limits.Value(scene::LimitKey::kClearanceWarningMm);
+    worst_is_smallest_ = true;
   }
   void OnSample(const trace::TraceSample& s) override {
+    sample_line_ = s.source_line;
     if (!s.collision.checked) return;
     const trace::SampleCollision& r = s.collision;
     Counted();
@@ -111,6 +133,22 @@ class ClearanceRule final : public Rule {
     line_worst_ = mm;
   }
 
+  // Carry: the line's smallest clearance reported so far, while it is the line being sampled.
+  void SaveCarry(std::string& out) const override {
+    const bool current = line_ == sample_line_ && line_ >= 0;
+    detail::AppendBytes(out, current ? line_ : -1);
+    if (current) detail::AppendBytes(out, line_worst_);
+  }
+
+ protected:
+  void AbsorbExtra(const Rule& later) override {
+    const auto& l = dynamic_cast<const ClearanceRule&>(later);
+    if (l.sample_line_ < 0) return;
+    line_ = l.line_;
+    line_worst_ = l.line_worst_;
+    sample_line_ = l.sample_line_;
+  }
+
  private:
   // "a|b" of the nearest pair ("" when nothing is within the world's cutoff).
   std::string PairText(const trace::SampleCollision& r) const {
@@ -118,9 +156,10 @@ class ClearanceRule final : public Rule {
     return BodyName(cell_, r.clearance_body_a) + "|" + BodyName(cell_, r.clearance_body_b);
   }
 
-  const trace::CellDescription& cell_;
-  int line_ = -1;
-  double line_worst_ = 0.0;
+  const trace::CellDescription& cell_;  // config
+  int line_ = -1;                       // carry: the last line with a finding
+  double line_worst_ = 0.0;             // carry: its smallest clearance reported, mm
+  int sample_line_ = -1;                // carry: the line of the last sample
 };
 
 }  // namespace

@@ -3,6 +3,7 @@
 // servo's tracking error (dyn.tracking). docs/timing.md.
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "detail/text_format.h"
 #include "stitchsim/verify/rule.h"
@@ -162,9 +163,20 @@ class PayloadRule final : public Rule {
         nullptr);
   }
 
+ protected:
+  void AbsorbExtra(const Rule& later) override {
+    if (line_ == 0) line_ = dynamic_cast<const PayloadRule&>(later).line_;
+  }
+  void ResetExtra() override { line_ = 0; }
+  void SaveExtra(nlohmann::json& extra) const override { extra["line"] = line_; }
+  bool LoadExtra(const nlohmann::json& extra) override {
+    line_ = extra.at("line").get<int>();
+    return true;
+  }
+
  private:
-  const RuleContext& ctx_;
-  int line_ = 0;
+  const RuleContext& ctx_;  ///< config
+  int line_ = 0;            ///< accumulator: the first motion line (0: none yet)
 };
 
 class TrackingRule final : public Rule {

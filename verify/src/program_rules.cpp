@@ -1,4 +1,5 @@
 // Rules about the programme as a whole.
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "stitchsim/verify/rule.h"
@@ -32,10 +33,31 @@ class StitchCountRule final : public Rule {
            nullptr);
   }
 
+ protected:
+  void AbsorbExtra(const Rule& later) override {
+    const auto& l = dynamic_cast<const StitchCountRule&>(later);
+    made_ += l.made_;
+    if (l.last_line_ != 0) last_line_ = l.last_line_;
+  }
+  void ResetExtra() override {
+    made_ = 0;
+    last_line_ = 0;
+  }
+  void SaveExtra(nlohmann::json& extra) const override {
+    extra["made"] = made_;
+    extra["last_line"] = last_line_;
+  }
+  bool LoadExtra(const nlohmann::json& extra) override {
+    const long made = extra.at("made").get<long>();
+    last_line_ = extra.at("last_line").get<int>();
+    made_ = made;
+    return true;
+  }
+
  private:
-  long declared_;
-  long made_ = 0;
-  int last_line_ = 0;
+  long declared_;      ///< config
+  long made_ = 0;      ///< accumulator: needle entries
+  int last_line_ = 0;  ///< accumulator: the last line seen (0: none), where a finding goes
 };
 
 }  // namespace

@@ -1,7 +1,9 @@
 #include "stitchsim/verify/rule.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace stitchsim::verify {
 
@@ -26,36 +28,31 @@ bool Rule::Worse(FindingSeverity severity, double value, double limit, const Fin
   return value > than.value;
 }
 
+Rule::LineFinding* Rule::RecentFinding(int line) {
+  for (auto it = recent_lines_.rbegin(); it != recent_lines_.rend(); ++it) {
+    if (it->line == line) return &*it;
+  }
+  return nullptr;
+}
+
 void Rule::Record(FindingSeverity severity, double value, double limit, int line, long stitch,
                   const std::string& subject, std::string message,
                   const trace::TraceSample* sample) {
-  // One finding per line: find the line's finding, if it was reported already.
-  std::size_t index = static_cast<std::size_t>(-1);
-  bool seen = false;
-  if (line == last_finding_line_) {
-    seen = true;
-    index = last_finding_index_;
-  } else if (const auto it = kept_by_line_.find(line); it != kept_by_line_.end()) {
-    seen = true;
-    index = it->second;
-  }
+  // One finding per line: find the line's finding, if it was reported already (kept or not).
+  LineFinding* seen = RecentFinding(line);
   bool was_error = false;
-  if (seen) {
-    const FindingSeverity before = index < summary_.findings.size()
-                                       ? summary_.findings[index].severity
-                                       : last_finding_severity_;
-    was_error = before == FindingSeverity::kError;
+  if (seen != nullptr) {
+    was_error = seen->severity == FindingSeverity::kError;
     if (!was_error && severity == FindingSeverity::kError) {
       --summary_.warnings;
       ++summary_.errors;
+      seen->severity = FindingSeverity::kError;
     }
   } else if (severity == FindingSeverity::kError) {
     ++summary_.errors;
   } else {
     ++summary_.warnings;
   }
-  last_finding_line_ = line;
-  last_finding_severity_ = was_error ? FindingSeverity::kError : severity;
   // The close-up goes to the first error (or a warning if there is no error).
   const bool first_error =
       severity == FindingSeverity::kError && !was_error && summary_.errors == 1;
@@ -70,20 +67,21 @@ void Rule::Record(FindingSeverity severity, double value, double limit, int line
   f.unit = summary_.unit;
   f.subject = subject;
   f.message = std::move(message);
-  if (seen) {
-    last_finding_index_ = index;
+  if (seen != nullptr) {
+    const std::size_t index = seen->index;
     if (index < summary_.findings.size() && Worse(severity, value, limit, summary_.findings[index]))
       summary_.findings[index] = std::move(f);
     return;
   }
+  LineFinding entry{line, severity, static_cast<std::size_t>(-1)};
   if (summary_.findings.size() >= kMaxFindingsPerRule) {
     summary_.truncated = true;
-    last_finding_index_ = static_cast<std::size_t>(-1);
-    return;
+  } else {
+    entry.index = summary_.findings.size();
+    summary_.findings.push_back(std::move(f));
   }
-  last_finding_index_ = summary_.findings.size();
-  kept_by_line_.emplace(line, last_finding_index_);
-  summary_.findings.push_back(std::move(f));
+  recent_lines_.push_back(entry);
+  if (recent_lines_.size() > kRecentFindingLines) recent_lines_.pop_front();
 }
 
 std::size_t Rule::AddSubject(std::string subject, std::optional<double> error_limit,
@@ -133,6 +131,106 @@ void Rule::RecordExceeded(FindingSeverity severity, double value, int line, long
                 limit, summary_.unit.c_str());
   // Classify already kept the snapshot sample at the worst value.
   Record(severity, value, limit, line, stitch, subject, buf, sample);
+}
+
+namespace {
+
+// `later`'s worst replaces `worst` only when it is worse (first occurrence wins ties, as
+// Observe does serially).
+template <typename Figure>
+void AbsorbWorst(Figure& figure, const Figure& later, bool smallest) {
+  if (!later.worst_value) return;
+  const double value = *later.worst_value;
+  const bool worse =
+      !figure.worst_value || (smallest ? value < *figure.worst_value : value > *figure.worst_value);
+  if (!worse) return;
+  figure.worst_value = later.worst_value;
+  figure.worst_line = later.worst_line;
+  figure.worst_stitch = later.worst_stitch;
+}
+
+template <typename Figure>
+void ResetWorst(Figure& figure) {
+  figure.checked = 0;
+  figure.worst_value.reset();
+  figure.worst_line = 0;
+  figure.worst_stitch = 0;
+}
+
+}  // namespace
+
+bool Rule::SawAnything() const {
+  if (saw_input_ || summary_.checked > 0 || summary_.errors > 0 || summary_.warnings > 0 ||
+      summary_.worst_value || !summary_.findings.empty())
+    return true;
+  return std::any_of(summary_.subjects.begin(), summary_.subjects.end(),
+                     [](const SubjectFigure& f) { return f.checked > 0 || f.worst_value; });
+}
+
+void Rule::AbsorbSummary(const RuleSummary& later) {
+  summary_.checked += later.checked;
+  summary_.errors += later.errors;
+  summary_.warnings += later.warnings;
+  AbsorbWorst(summary_, later, worst_is_smallest_);
+  for (std::size_t i = 0; i < summary_.subjects.size(); ++i) {
+    summary_.subjects[i].checked += later.subjects[i].checked;
+    AbsorbWorst(summary_.subjects[i], later.subjects[i], worst_is_smallest_);
+  }
+  // This part's findings, then later's: the first kMaxFindingsPerRule, as one rule keeps.
+  for (const Finding& f : later.findings) {
+    if (summary_.findings.size() >= kMaxFindingsPerRule) {
+      summary_.truncated = true;
+      break;
+    }
+    summary_.findings.push_back(f);
+  }
+  summary_.truncated = summary_.truncated || later.truncated;
+}
+
+void Rule::Absorb(const Rule& later) {
+  if (later.summary_.id != summary_.id ||
+      later.summary_.subjects.size() != summary_.subjects.size())
+    throw std::logic_error("Rule::Absorb: rule " + later.summary_.id + " into " + summary_.id);
+  if (!mergeable_) {
+    if (!later.SawAnything()) return;
+    throw std::logic_error(summary_.id +
+                           " judges the programme as a whole and cannot be merged from parts");
+  }
+  const std::size_t before = summary_.findings.size();
+  AbsorbSummary(later.summary_);
+  // Later's lines follow this part's: its kept findings moved up by this part's count.
+  for (LineFinding e : later.recent_lines_) {
+    if (e.index != static_cast<std::size_t>(-1)) {
+      e.index =
+          before + e.index < kMaxFindingsPerRule ? before + e.index : static_cast<std::size_t>(-1);
+    }
+    recent_lines_.push_back(e);
+    if (recent_lines_.size() > kRecentFindingLines) recent_lines_.pop_front();
+  }
+  // The close-up: the first error's, else a warning's.
+  const bool has_error = summary_.errors - later.summary_.errors > 0;
+  if (!has_error && later.worst_sample_ && (later.summary_.errors > 0 || !worst_sample_)) {
+    worst_sample_ = later.worst_sample_;
+  }
+  saw_input_ = saw_input_ || later.saw_input_;
+  AbsorbExtra(later);
+}
+
+void Rule::ResetAccumulators() {
+  if (!mergeable_ && SawAnything()) {
+    throw std::logic_error(summary_.id +
+                           " judges the programme as a whole and cannot start afresh");
+  }
+  summary_.errors = 0;
+  summary_.warnings = 0;
+  ResetWorst(summary_);
+  for (SubjectFigure& f : summary_.subjects) ResetWorst(f);
+  summary_.findings.clear();
+  summary_.truncated = false;
+  worst_sample_.reset();
+  recent_lines_.clear();
+  saw_input_ = false;
+  ResetExtra();
 }
 
 }  // namespace stitchsim::verify

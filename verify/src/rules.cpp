@@ -2,8 +2,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "afp_laid.h"
+#include "detail/carry_bytes.h"
 #include "detail/text_format.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/verify/rule.h"
@@ -169,7 +171,23 @@ class StitchLengthRule final : public Rule {
     previous_ = p;
   }
 
+  // Carry: the last penetration of the seam (what the next one is measured from), bitwise.
+  void SaveCarry(std::string& out) const override {
+    detail::AppendBytes(out, previous_.has_value());
+    if (!previous_) return;
+    detail::AppendBytes(out, previous_->stitch);
+    detail::AppendBytes(out, previous_->points.size());
+    for (const auto& point : previous_->points) {
+      detail::AppendBytes(out, point.has_value());
+      if (point) detail::AppendMatrix(out, *point);
+    }
+  }
+  void AbsorbExtra(const Rule& later) override {
+    if (later.SawAnything()) previous_ = dynamic_cast<const StitchLengthRule&>(later).previous_;
+  }
+
  private:
+  // Config: the context, at_tool_point_ and the insertion limits. Carry: previous_.
   const RuleContext& ctx_;
   std::optional<PenetrationRecord> previous_;
   std::vector<bool> at_tool_point_;  ///< per needle: the rule's own limits apply
@@ -238,171 +256,6 @@ class NormalityRule final : public Rule {
         std::acos(c) * kRadToDeg, p.line, p.stitch, "head z",
         [] { return std::string("head tilt from the normal"); }, &p.sample);
   }
-};
-
-// ---------------------------------------------------------------------------------------------
-// Kinematics (IK status of the solved samples).
-
-class IkStatusRule : public Rule {
- public:
-  IkStatusRule(std::string id, std::string description, std::string unit, trace::IkStatus status)
-      : Rule(std::move(id), std::move(description), std::move(unit)), status_(status) {}
-  void OnSample(const trace::TraceSample& s) override {
-    if (!s.has_joints) return;
-    Counted();
-    if (s.ik_status != status_) return;
-    // One finding per line: a line out of reach is one mistake, not one per sample.
-    if (s.source_line == last_line_) return;
-    last_line_ = s.source_line;
-    const double v = Value(s);
-    Observe(v, s.source_line, s.stitch, &s);
-    Record(FindingSeverity::kError, v, Limit(), s.source_line, s.stitch, Subject(s), Message(s),
-           &s);
-  }
-
- protected:
-  virtual double Value(const trace::TraceSample&) const { return 1.0; }
-  virtual double Limit() const { return 0.0; }
-  virtual std::string Subject(const trace::TraceSample&) const { return "arm"; }
-  virtual std::string Message(const trace::TraceSample& s) const = 0;
-
- private:
-  trace::IkStatus status_;
-  int last_line_ = -1;
-};
-
-std::string PoseText(const trace::TraceSample& s) {
-  const Eigen::Vector3d p = s.tool_part.translation();
-  return Fmt("tool point (%.2f, %.2f, %.2f) mm", p.x(), p.y(), p.z());
-}
-
-class ReachRule final : public IkStatusRule {
- public:
-  ReachRule()
-      : IkStatusRule("kin.reach", "tool poses the arm cannot reach from the rail", "",
-                     trace::IkStatus::kUnreachable) {}
-  std::string Message(const trace::TraceSample& s) const override {
-    return PoseText(s) + " is out of the arm's reach (rail at " +
-           Fmt("%.0f mm)", s.joints[trace::kRailX] * 1000.0);
-  }
-};
-
-class JointLimitRule final : public IkStatusRule {
- public:
-  explicit JointLimitRule(const RuleContext& ctx)
-      : IkStatusRule("kin.joint_limit", "joints beyond their URDF limits (deg, rail mm)", "deg",
-                     trace::IkStatus::kJointLimit),
-        cell_(ctx.cell) {}
-  double Value(const trace::TraceSample& s) const override { return Excess(s).first; }
-  std::string Subject(const trace::TraceSample& s) const override {
-    return cell_->joint_names[static_cast<std::size_t>(Excess(s).second)];
-  }
-  std::string Message(const trace::TraceSample& s) const override {
-    const auto [v, j] = Excess(s);
-    return PoseText(s) + " needs joint " + cell_->joint_names[static_cast<std::size_t>(j)] + " " +
-           Fmt("%.3g", v) + (j == trace::kRailX ? " mm" : " deg") + " beyond its limit";
-  }
-
- private:
-  std::pair<double, int> Excess(const trace::TraceSample& s) const {
-    double worst = 0.0;
-    int joint = trace::kA1;
-    for (int j = 0; j < trace::kNumJoints; ++j) {
-      const double lo = cell_->lower_limits[j], hi = cell_->upper_limits[j];
-      double e = std::max(lo - s.joints[j], s.joints[j] - hi);
-      e *= j == trace::kRailX ? 1000.0 : kRadToDeg;
-      if (e > worst) {
-        worst = e;
-        joint = j;
-      }
-    }
-    return {worst, joint};
-  }
-  const trace::CellDescription* cell_;
-};
-
-class SingularityRule final : public IkStatusRule {
- public:
-  explicit SingularityRule(const RuleContext& ctx)
-      : IkStatusRule("kin.singularity", "wrist (a5 near 0) or shoulder singular poses", "deg",
-                     trace::IkStatus::kWristSingularity),
-        a5_min_deg_(ctx.scene->limits.Value(LimitKey::kSingularityA5MinDeg)) {
-    summary_.error_limit = a5_min_deg_;
-  }
-  void OnSample(const trace::TraceSample& s) override {
-    if (s.has_joints && s.ik_status == trace::IkStatus::kShoulderSingularity) {
-      Record(FindingSeverity::kError, 0.0, 0.0, s.source_line, s.stitch, "shoulder",
-             PoseText(s) + " puts the wrist centre on the a1 axis (shoulder singularity)", &s);
-    }
-    IkStatusRule::OnSample(s);
-  }
-  double Value(const trace::TraceSample& s) const override {
-    return std::abs(s.joints[trace::kA5]) * kRadToDeg;
-  }
-  double Limit() const override { return a5_min_deg_; }
-  std::string Subject(const trace::TraceSample&) const override { return "a5"; }
-  std::string Message(const trace::TraceSample& s) const override {
-    return PoseText(s) + Fmt(" puts a5 at %.3g deg, inside the %.3g deg wrist singularity band",
-                             Value(s), a5_min_deg_);
-  }
-
- private:
-  double a5_min_deg_;
-};
-
-class ConfigFlipRule final : public IkStatusRule {
- public:
-  ConfigFlipRule()
-      : IkStatusRule("kin.config_flip",
-                     "arm configuration (shoulder/elbow/wrist) changes between consecutive poses",
-                     "", trace::IkStatus::kConfigFlip) {}
-  std::string Message(const trace::TraceSample& s) const override {
-    return PoseText(s) + " is reachable only by flipping the arm configuration to " +
-           trace::ToString(s.configuration);
-  }
-};
-
-class JointSpeedRule final : public Rule {
- public:
-  explicit JointSpeedRule(const RuleContext& ctx)
-      : Rule("kin.joint_speed", "joint speed at the programmed feed against the URDF maximum", "%"),
-        cell_(ctx.cell) {
-    summary_.error_limit = 100.0 * ctx.scene->limits.Value(LimitKey::kJointSpeedMaxFraction);
-    summary_.warning_limit = ctx.scene->limits.Get(LimitKey::kJointSpeedWarningPct);
-  }
-  void OnSample(const trace::TraceSample& s) override {
-    if (!s.has_joints) return;
-    const bool usable = trace::IkUsable(s.ik_status);
-    if (have_ && usable) {
-      const double dt = s.time_s - time_;
-      if (dt > 1e-9) {
-        double worst = 0.0;
-        int joint = 0;
-        for (int j = 0; j < trace::kNumJoints; ++j) {
-          const double pct = std::abs(s.joints[j] - q_[j]) / dt / cell_->max_velocities[j] * 100.0;
-          if (pct > worst) {
-            worst = pct;
-            joint = j;
-          }
-        }
-        const std::string& name = cell_->joint_names[static_cast<std::size_t>(joint)];
-        CheckUpper(
-            worst, s.source_line, s.stitch, name,
-            [&] { return "joint " + name + " speed (of its maximum)"; }, &s);
-      }
-    }
-    if (usable) {
-      q_ = s.joints;
-      time_ = s.time_s;
-      have_ = true;
-    }
-  }
-
- private:
-  const trace::CellDescription* cell_;
-  trace::JointVector q_ = trace::JointVector::Zero();
-  double time_ = 0.0;
-  bool have_ = false;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -478,8 +331,19 @@ class EmptyProgramRule final : public Rule {
     }
   }
 
+ protected:
+  void AbsorbExtra(const Rule& later) override {
+    stitches_ += dynamic_cast<const EmptyProgramRule&>(later).stitches_;
+  }
+  void ResetExtra() override { stitches_ = 0; }
+  void SaveExtra(nlohmann::json& extra) const override { extra["stitches"] = stitches_; }
+  bool LoadExtra(const nlohmann::json& extra) override {
+    stitches_ = extra.at("stitches").get<long>();
+    return true;
+  }
+
  private:
-  long stitches_ = 0;
+  long stitches_ = 0;  ///< accumulator: needle entries
 };
 
 }  // namespace
@@ -490,7 +354,13 @@ std::unique_ptr<Rule> MakeCollisionRobotCellRule(const RuleContext& ctx);
 std::unique_ptr<Rule> MakeCollisionClearanceRule(const RuleContext& ctx);
 std::unique_ptr<Rule> MakeConstraintCrossingRule(const RuleContext& ctx);  // constraint_rules.cpp
 std::unique_ptr<Rule> MakeStitchCountRule(const RuleContext& ctx);         // program_rules.cpp
-std::unique_ptr<Rule> MakeLineSamplingRule();                              // sampling_rule.cpp
+// kin_rules.cpp
+std::unique_ptr<Rule> MakeReachRule();
+std::unique_ptr<Rule> MakeJointLimitRule(const RuleContext& ctx);
+std::unique_ptr<Rule> MakeSingularityRule(const RuleContext& ctx);
+std::unique_ptr<Rule> MakeConfigFlipRule();
+std::unique_ptr<Rule> MakeJointSpeedRule(const RuleContext& ctx);
+std::unique_ptr<Rule> MakeLineSamplingRule();  // sampling_rule.cpp
 // dynamics_rules.cpp
 std::unique_ptr<Rule> MakeAccelerationRule(const RuleContext& ctx);
 std::unique_ptr<Rule> MakeTorqueRule(const RuleContext& ctx);
@@ -532,11 +402,11 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
     rules.push_back(MakeAfpCompactionRule(ctx, laid));
     if (!ctx.scene->plies.empty()) rules.push_back(MakeAfpCoverageRule(ctx, laid));
   }
-  rules.push_back(std::make_unique<ReachRule>());
-  rules.push_back(std::make_unique<JointLimitRule>(ctx));
-  rules.push_back(std::make_unique<SingularityRule>(ctx));
-  rules.push_back(std::make_unique<ConfigFlipRule>());
-  rules.push_back(std::make_unique<JointSpeedRule>(ctx));
+  rules.push_back(MakeReachRule());
+  rules.push_back(MakeJointLimitRule(ctx));
+  rules.push_back(MakeSingularityRule(ctx));
+  rules.push_back(MakeConfigFlipRule());
+  rules.push_back(MakeJointSpeedRule(ctx));
   if (ctx.cell->timed) rules.push_back(MakeAccelerationRule(ctx));
   if (ctx.cell->timed) rules.push_back(MakeTorqueRule(ctx));
   if (PayloadCheckable(ctx)) rules.push_back(MakePayloadRule(ctx));

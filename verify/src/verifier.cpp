@@ -1,6 +1,7 @@
 #include "stitchsim/verify/verifier.h"
 
 #include <algorithm>
+#include <atomic>
 
 namespace stitchsim::verify {
 
@@ -9,7 +10,10 @@ Verifier::Verifier(const RuleContext& ctx, bool keep_stitch_marks)
       // From the verifier's copy: rules keep references to it (never to the caller's `ctx`).
       rules_(MakeRules(ctx_)),
       window_(*ctx_.process),
-      keep_marks_(keep_stitch_marks) {}
+      keep_marks_(keep_stitch_marks) {
+  static std::atomic<std::uint64_t> instances{0};
+  instance_ = ++instances;
+}
 
 namespace {
 
@@ -40,7 +44,11 @@ void Verifier::MarkStitch(long stitch, std::size_t errors_before, std::size_t wa
 void Verifier::OnLine(const trace::LineRecord& line) {
   line_from_ = line.from;
   line_to_ = line.to;
-  for (auto& r : rules_) r->OnLine(line);
+  saw_input_ = true;
+  for (auto& r : rules_) {
+    r->saw_input_ = true;
+    r->OnLine(line);
+  }
 }
 
 // A dynamic run's sample: the commanded pose the walk follows (tool_part is the actual one).
@@ -52,7 +60,11 @@ const Eigen::Isometry3d* Verifier::WalkReference(const trace::TraceSample& s) {
 
 void Verifier::OnSample(const trace::TraceSample& s) {
   const auto [e0, w0] = Totals(rules_);
-  for (auto& r : rules_) r->OnSample(s);
+  saw_input_ = true;
+  for (auto& r : rules_) {
+    r->saw_input_ = true;
+    r->OnSample(s);
+  }
   MarkStitch(s.stitch, static_cast<std::size_t>(e0), static_cast<std::size_t>(w0));
 
   if (s.event == trace::SampleEvent::kNeedleEntry) {

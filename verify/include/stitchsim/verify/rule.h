@@ -3,10 +3,11 @@
 // and checks over the trace. Adding a rule = one new class + one line in MakeRules.
 
 #include <Eigen/Geometry>
+#include <deque>
 #include <memory>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "stitchsim/process/stitch_cycle.h"
@@ -70,8 +71,45 @@ class Rule {
   /// The trace sample at the worst finding, for the close-up snapshot.
   const std::optional<trace::TraceSample>& WorstSample() const { return worst_sample_; }
 
+  // Chunked runs (Verifier::Absorb, ResetAccumulators, Carry, SavePartial). A rule's state is
+  // config (limits, from the context), accumulators (the summary, its findings, the worst
+  // sample and the rule's own counters: merged) and carry (what one line hands the next:
+  // SaveCarry).
+
+  /// Folds `later` (the same rule over the part right after this one's) into this one: the
+  /// summary and the base bookkeeping generically, then AbsorbExtra; the carry becomes
+  /// later's. Throws std::logic_error for another rule, or for a rule that judges the
+  /// programme as a whole (!Mergeable()) when `later` saw anything (Verifier::Absorb takes
+  /// such a rule over whole when only `later` saw something).
+  void Absorb(const Rule& later);
+  /// Every accumulator to its initial value (then ResetExtra); the carry stays. Throws
+  /// std::logic_error for a rule that is not Mergeable() and saw something.
+  void ResetAccumulators();
+  /// Appends the state the rule carries from one line to the next, as bytes.
+  virtual void SaveCarry(std::string& /*out*/) const {}
+  /// The accumulators (not the carry, not the worst sample) as JSON, and back (replacing
+  /// them). LoadPartial returns false with `error` set when `j` is not this rule's (id, unit,
+  /// limits, subjects) or is malformed; nothing changes then. SavePartial throws
+  /// std::logic_error for a rule that is not Mergeable() and saw something.
+  nlohmann::json SavePartial() const;
+  bool LoadPartial(const nlohmann::json& j, std::string& error);
+  /// True once the rule counted anything or was given a line or sample since the last reset.
+  bool SawAnything() const;
+  /// False for a rule that judges the programme as a whole (the afp.* rules: coverage and
+  /// course edges are judged over a ply): it cannot be split into parts.
+  bool Mergeable() const { return mergeable_; }
+
  protected:
   Rule(std::string id, std::string description, std::string unit);
+  /// The rule's own accumulators (`later` is the same rule type): merge them; take over
+  /// later's carry.
+  virtual void AbsorbExtra(const Rule& /*later*/) {}
+  /// The rule's own accumulators to their initial values (not the carry).
+  virtual void ResetExtra() {}
+  /// The rule's own accumulators into `extra` (an object), and back; false if malformed
+  /// (then nothing changes).
+  virtual void SaveExtra(nlohmann::json& /*extra*/) const {}
+  virtual bool LoadExtra(const nlohmann::json& /*extra*/) { return true; }
   /// Counts one checked item and records a finding when `value` exceeds a limit
   /// (upper-bound check). `what()` names the measured quantity; it is only called for a
   /// finding, so the hot path formats nothing. Returns the severity recorded, if any.
@@ -105,17 +143,37 @@ class Rule {
 
   RuleSummary summary_;
   std::optional<trace::TraceSample> worst_sample_;
+  /// The worst value is the smallest (a lower-bound rule that tracks its worst itself, e.g.
+  /// collision.clearance): merging keeps the smaller.
+  bool worst_is_smallest_ = false;
+  /// Cleared by a rule that judges the programme as a whole (see Mergeable).
+  bool mergeable_ = true;
 
  private:
+  friend class Verifier;  // marks saw_input_
+
+  /// A line that had a finding: its severity so far and the finding's index (npos when the
+  /// finding was not kept, past kMaxFindingsPerRule).
+  struct LineFinding {
+    int line = 0;
+    FindingSeverity severity = FindingSeverity::kWarning;
+    std::size_t index = static_cast<std::size_t>(-1);
+  };
+  /// Lines recorded this many distinct lines ago or fewer are one finding with a new one.
+  static constexpr std::size_t kRecentFindingLines = 64;
+
   /// Severity first, then value over limit (value alone when there is no positive limit).
   static bool Worse(FindingSeverity severity, double value, double limit, const Finding& than);
-  /// Line of the last finding recorded and its index in findings (npos when not kept).
-  int last_finding_line_ = -1;
-  std::size_t last_finding_index_ = static_cast<std::size_t>(-1);
-  FindingSeverity last_finding_severity_ = FindingSeverity::kWarning;
-  /// Kept findings by line (at most kMaxFindingsPerRule entries), for lines reported out of
-  /// order.
-  std::unordered_map<int, std::size_t> kept_by_line_;
+  LineFinding* RecentFinding(int line);
+  void AbsorbSummary(const RuleSummary& later);
+
+  /// The last kRecentFindingLines lines that had a finding, oldest first, kept or not: the
+  /// one-finding-per-line merge looks here, so it does not depend on the findings cap (a line
+  /// reported again after another line counts once, before and after the cap alike, and the
+  /// counts of a programme verified in parts add up to the whole's).
+  std::deque<LineFinding> recent_lines_;
+  /// Given a line or sample since the last reset (set by the verifier).
+  bool saw_input_ = false;
 };
 
 /// Every rule, in report order, with limits from `ctx`.
