@@ -129,6 +129,7 @@ void Progress::ReportLocked() {
     if (now_s - last_draw_s_ >= kRedrawInterval_s) DrawBarLocked(done, now_s);
     return;
   }
+  if (now_s - start_s_ < options_.plain_min_run_s) return;
   const std::int64_t step_index = StepIndex(done);
   // The step at 100 % is left to Finish()'s final line.
   const bool step_due = step_index > last_step_ && done < total_;
@@ -196,6 +197,7 @@ void Progress::Finish() {
   const double now_s = options_.clock();
   const double elapsed_s = now_s - start_s_;
   const double done = done_.load();
+  if (!terminal_ && elapsed_s < options_.plain_min_run_s) return;
   std::string line;
   if (terminal_ && bar_width_ > 0) line = "\r" + std::string(bar_width_, ' ') + "\r";
   line += what_ + ": " + CountText(done) + " " + unit_ + " in " +
