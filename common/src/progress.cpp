@@ -129,8 +129,11 @@ void Progress::ReportLocked() {
     if (now_s - last_draw_s_ >= kRedrawInterval_s) DrawBarLocked(done, now_s);
     return;
   }
-  if (now_s - start_s_ < options_.plain_min_run_s) return;
   const std::int64_t step_index = StepIndex(done);
+  if (now_s - start_s_ < options_.plain_min_run_s) {
+    last_step_ = std::max(last_step_, step_index);  // the steps passed then are not due later
+    return;
+  }
   // The step at 100 % is left to Finish()'s final line.
   const bool step_due = step_index > last_step_ && done < total_;
   const bool time_due = now_s - last_line_s_ >= options_.plain_interval_s;
