@@ -15,7 +15,8 @@ constexpr double kRedrawInterval_s = 0.1;    // a terminal bar: at most ~10 redr
 constexpr double kCheckFraction = 1e-3;      // Add() looks at the clock every 0.1 % of the total
 constexpr std::uint64_t kCheckCalls = 4096;  // ... or every 4096 calls when the total is unknown
 constexpr int kBarChars = 20;
-constexpr double kStepEps = 1e-9;  // 0.1 * 1000 is step 1, not 0.99999...
+constexpr double kStepEps = 1e-9;     // 0.1 * 1000 is step 1, not 0.99999...
+constexpr double kRateAfter_s = 1.0;  // a rate and time left from the first second only (start-up)
 
 double SteadySeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -157,9 +158,8 @@ void Progress::PrintPlainLocked(double done, double now_s) {
   } else {
     line += CountText(done) + " " + unit_;
   }
-  const std::string rate = RateText(done, elapsed_s);
-  if (!rate.empty()) line += ", " + rate;
-  if (total_ > 0.0 && done > 0.0 && elapsed_s > 0.0) {
+  if (elapsed_s >= kRateAfter_s) line += ", " + RateText(done, elapsed_s);
+  if (total_ > 0.0 && done > 0.0 && elapsed_s >= kRateAfter_s) {
     line += ", " + DurationText(std::max(0.0, total_ - done) * elapsed_s / done) + " left";
   }
   line += "\n";
@@ -180,9 +180,8 @@ void Progress::DrawBarLocked(double done, double now_s) {
   } else {
     line += CountText(done) + " " + unit_;
   }
-  const std::string rate = RateText(done, elapsed_s);
-  if (!rate.empty()) line += ", " + rate;
-  if (total_ > 0.0 && done > 0.0 && elapsed_s > 0.0) {
+  if (elapsed_s >= kRateAfter_s) line += ", " + RateText(done, elapsed_s);
+  if (total_ > 0.0 && done > 0.0 && elapsed_s >= kRateAfter_s) {
     line += ", " + DurationText(std::max(0.0, total_ - done) * elapsed_s / done) + " left";
   }
   // Pad over what the last redraw left on screen.

@@ -212,6 +212,8 @@ TEST(Progress, TerminalRedrawsInPlaceUntilFinish) {
   const std::string drawn = out.Text();
   EXPECT_EQ(drawn.find('\n'), std::string::npos);
   EXPECT_EQ(std::count(drawn.begin(), drawn.end(), '\r'), 100);
+  // No rate nor time left in the first second (start-up would skew them).
+  EXPECT_EQ(drawn.rfind("\rverify [....................]   1 % 1/100 lines\r", 0), 0u) << drawn;
   // Half way: 50 lines in 6.25 s, 50 left at 8 lines/s = 6.25 s.
   EXPECT_NE(drawn.find("\rverify [##########..........]  50 % 50/100 lines, 8 lines/s, 6 s left"),
             std::string::npos);
