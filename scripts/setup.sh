@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 PACKAGES=(
-  build-essential cmake ninja-build pkg-config python3
+  build-essential cmake ninja-build pkg-config python3 python3-yaml  # yaml: ctest ci_doc
   libmujoco-dev libqhull-dev libeigen3-dev liburdfdom-dev libfcl-dev libosmesa6-dev
   libgtest-dev libgmock-dev libbenchmark-dev libyaml-cpp-dev libcli11-dev
   nlohmann-json3-dev libpng-dev

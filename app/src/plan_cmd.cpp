@@ -14,6 +14,7 @@
 #include "cli_common.h"
 #include "cli_options.h"
 #include "commands.h"
+#include "plan_progress.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/planner/afp_planner.h"
 #include "stitchsim/planner/raster_planner.h"
@@ -33,6 +34,7 @@ struct PlanStitchArgs {
   std::string mode = "auto";
   std::optional<double> stitch_length_mm;  ///< unset: the scene's nominal
   std::string output;
+  bool quiet = false;  ///< no progress on stderr
 };
 
 // A scene whose head stitches (diagnostics printed); nullptr otherwise.
@@ -73,6 +75,8 @@ int RunPlanStitch(const PlanStitchArgs& a) {
   planner::StitchPlanOptions options;
   options.mode = *planner::ParseMode(a.mode);
   if (a.stitch_length_mm) options.nominal_stitch_length_mm = *a.stitch_length_mm;
+  PlanProgressPrinter progress("plan stitch", "stitches", a.quiet);
+  options.progress = progress.Callback();
   auto planner = planner::StitchPathPlanner::Create(*scene, *path, options, sink);
   if (PrintDiagnostics(sink) || !planner) return kExitBadInput;
   // Streamed to a temporary file beside the output, renamed when complete: memory does not
@@ -85,6 +89,7 @@ int RunPlanStitch(const PlanStitchArgs& a) {
   }
   const planner::ProgramSummary s =
       planner::WriteStitchProgram(*planner, *scene, path->name, *dialect, out->Stream());
+  progress.Finish();
   if (err = out->Commit(); !err.empty()) {
     PrintError("io-write", err);
     return kExitBadInput;
@@ -115,6 +120,7 @@ struct PlanAfpArgs {
   double point_spacing_mm = 5.0;
   std::string output;
   std::string csv;
+  bool quiet = false;  ///< no progress on stderr
 };
 
 std::string Deg(double rad) {
@@ -163,14 +169,20 @@ int RunPlanAfpAuto(const PlanAfpArgs& a, const scene::PathSpec* path,
   planner::InclineSearchOptions search;
   search.max_deg = a.incline_max_deg;
   search.step_deg = a.incline_step_deg;
+  // Progress: candidates judged, of all there are (the search stops at the first that passes).
+  PlanProgressPrinter progress("plan afp", "inclinations", a.quiet);
+  const double candidates = static_cast<double>(planner::InclineCandidates(search).size());
+  int judged = 0;
   const planner::InclineSearchResult r =
       planner::SearchAfpIncline(*ls->scene, path, options, search, VerifyJudge(*ls, *world), sink,
-                                [](const planner::InclineCandidate& c) {
+                                [&](const planner::InclineCandidate& c) {
+                                  progress.Update(++judged, candidates);
                                   if (c.pass) return;
                                   std::printf("incline %s deg: rejected: %s\n",
                                               Deg(c.incline_rad).c_str(), c.failure.c_str());
                                   std::fflush(stdout);
                                 });
+  progress.Finish();
   if (PrintDiagnostics(sink)) return kExitBadInput;
   if (!r.error.empty()) {
     PrintError("plan-incline-check", "--incline auto: " + r.error);
@@ -262,6 +274,7 @@ struct PlanRasterArgs {
   std::optional<double> pitch_mm, row_spacing_mm, margin_mm;
   std::vector<double> region_mm;  // u_min v_min u_max v_max, mm
   std::string output;
+  bool quiet = false;  ///< no progress on stderr
 };
 
 int RunPlanRaster(const PlanRasterArgs& a) {
@@ -296,8 +309,11 @@ int RunPlanRaster(const PlanRasterArgs& a) {
     PrintError("io-write", err);
     return kExitBadInput;
   }
+  PlanProgressPrinter progress("plan raster", "rows", a.quiet);
+  o.progress = progress.Callback();
   const std::optional<planner::RasterSummary> s =
       planner::WriteRasterProgram(*scene, o, *dialect, out->Stream(), sink);
+  progress.Finish();
   if (PrintDiagnostics(sink) || !s) return kExitBadInput;  // the temporary goes with `out`
   if (err = out->Commit(); !err.empty()) {
     PrintError("io-write", err);
@@ -338,6 +354,7 @@ void AddPlanCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--dialect", args->dialect,
                   "Dialect YAML file (default: the built-in dialect, models/dialect/default.yaml)");
   AddScenePathFlag(*cmd);
+  AddQuietFlag(*cmd, args->quiet);
   cmd->callback([args, &exit_code] { exit_code = RunPlanStitch(*args); });
 
   auto afp = std::make_shared<PlanAfpArgs>();
@@ -363,6 +380,7 @@ void AddPlanCommand(CLI::App& app, int& exit_code) {
   afp_cmd->add_option("-o,--output", afp->output, "Programme file to write")->required();
   afp_cmd->add_option("--csv", afp->csv, "Per-point CSV (alpha, tangent, inclination, B, C)");
   AddScenePathFlag(*afp_cmd);
+  AddQuietFlag(*afp_cmd, afp->quiet);
   afp_cmd->callback([afp, &exit_code] { exit_code = RunPlanAfp(*afp); });
 
   auto ras = std::make_shared<PlanRasterArgs>();
@@ -394,6 +412,7 @@ void AddPlanCommand(CLI::App& app, int& exit_code) {
   ras_cmd->add_option("-o,--output", ras->output, "Programme file to write")->required();
   ras_cmd->add_option("--dialect", ras->dialect, "Dialect YAML file (default: built-in)");
   AddScenePathFlag(*ras_cmd);
+  AddQuietFlag(*ras_cmd, ras->quiet);
   ras_cmd->callback([ras, &exit_code] { exit_code = RunPlanRaster(*ras); });
   AddPlanPlyCommand(*plan, exit_code);
 }

@@ -6,6 +6,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "plan_progress.h"
 #include "stitchsim/planner/ply_planner.h"
 
 namespace stitchsim::app {
@@ -16,6 +17,7 @@ struct PlanPlyArgs {
   std::vector<std::string> plies;
   std::string output;
   std::string tows_csv;
+  bool quiet = false;  ///< no progress on stderr
 };
 
 // Prints one planned ply's summary line and its findings.
@@ -69,7 +71,11 @@ int RunPlanPly(const PlanPlyArgs& a) {
   plans.reserve(specs.size());
   for (const scene::PlySpec* ply : specs) {
     const auto t0 = std::chrono::steady_clock::now();
-    auto plan = planner::PlanPly(*scene, *ply, planner::PlyPlanOptions{}, sink);
+    PlanProgressPrinter progress("plan ply " + ply->name, "courses", a.quiet);
+    planner::PlyPlanOptions options;
+    options.progress = progress.Callback();
+    auto plan = planner::PlanPly(*scene, *ply, options, sink);
+    progress.Finish();
     if (PrintDiagnostics(sink) || !plan) return kExitBadInput;
     plans.push_back(std::move(*plan));
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
@@ -108,6 +114,7 @@ void AddPlanPlyCommand(CLI::App& plan, int& exit_code) {
   cmd->add_option("--tows-csv", a->tows_csv,
                   "Per course, tow and laid segment: course length and edge points (docs/afp.md)");
   AddScenePathFlag(*cmd);
+  AddQuietFlag(*cmd, a->quiet);
   cmd->callback([a, &exit_code] { exit_code = RunPlanPly(*a); });
 }
 

@@ -9,6 +9,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "plan_progress.h"
 #include "sequence_costs.h"
 #include "sequence_run.h"
 #include "stitchsim/planner/sequence_offpart.h"
@@ -22,6 +23,7 @@ namespace {
 struct SequenceArgs {
   std::string program, scene, output, report, cost = "axes", solver = "local", home, order;
   bool bidirectional = false, return_home = false, course_level = false, measure_gap = false;
+  bool quiet = false;  // no progress on stderr
   double time_limit_s = 10.0;
 };
 
@@ -186,9 +188,11 @@ void CostsOf(const Inputs& in, const MeasureSpec* specs, SequenceOutcome& o) {
 
 // Orders every set in turn, each from where the previous one ended; a set whose solved order
 // costs more than the programme's keeps the programme's (seed 004, requirement 4).
-void SolveSets(const SequenceArgs& a, const Inputs& in, const MeasureSpec& spec,
-               SequenceOutcome& o) {
+// `progress`: courses ordered so far, of the programme's.
+void SolveSets(const SequenceArgs& a, const Inputs& in, const MeasureSpec& spec, SequenceOutcome& o,
+               const planner::PlanProgress& progress) {
   const EndPoint* start = &in.ends.home;
+  const double total_courses = static_cast<double>(in.program.courses.size());
   for (std::size_t k = 0; k < in.network.sets.size(); ++k) {
     const auto& courses = in.network.sets[k].courses;
     const bool last = k + 1 == in.network.sets.size();
@@ -227,6 +231,7 @@ void SolveSets(const SequenceArgs& a, const Inputs& in, const MeasureSpec& spec,
       o.after.push_back({courses[static_cast<std::size_t>(v.course)], v.reversed});
     const auto& lastv = o.after.back();
     start = &in.ends.ends[4 * static_cast<std::size_t>(lastv.course) + (lastv.reversed ? 3 : 1)];
+    if (progress) progress(static_cast<double>(o.after.size()), total_courses);
   }
 }
 
@@ -381,7 +386,9 @@ int RunSequence(const SequenceArgs& a) {
   for (std::size_t mi = 0; mi < 3; ++mi)
     specs[mi] = SpecOf(kMeasures[mi], *in->loaded.robot, in->axis_weights);
   if (a.order.empty()) {
-    SolveSets(a, *in, specs[static_cast<std::size_t>(o.measure)], o);
+    PlanProgressPrinter progress("sequence", "courses", a.quiet);
+    SolveSets(a, *in, specs[static_cast<std::size_t>(o.measure)], o, progress.Callback());
+    progress.Finish();
   } else {
     for (auto& set : o.sets) set.solver = "given";
   }
@@ -453,6 +460,7 @@ void AddSequenceCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--order", a->order,
                   "Lay the courses in this order (a report's \"order\") instead of solving");
   AddScenePathFlag(*cmd);
+  AddQuietFlag(*cmd, a->quiet);
   cmd->callback([a, &exit_code] { exit_code = RunSequence(*a); });
 }
 

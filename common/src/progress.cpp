@@ -15,7 +15,8 @@ constexpr double kRedrawInterval_s = 0.1;    // a terminal bar: at most ~10 redr
 constexpr double kCheckFraction = 1e-3;      // Add() looks at the clock every 0.1 % of the total
 constexpr std::uint64_t kCheckCalls = 4096;  // ... or every 4096 calls when the total is unknown
 constexpr int kBarChars = 20;
-constexpr double kStepEps = 1e-9;  // 0.1 * 1000 is step 1, not 0.99999...
+constexpr double kStepEps = 1e-9;     // 0.1 * 1000 is step 1, not 0.99999...
+constexpr double kRateAfter_s = 1.0;  // a rate and time left from the first second only (start-up)
 
 double SteadySeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -130,6 +131,10 @@ void Progress::ReportLocked() {
     return;
   }
   const std::int64_t step_index = StepIndex(done);
+  if (now_s - start_s_ < options_.plain_min_run_s) {
+    last_step_ = std::max(last_step_, step_index);  // the steps passed then are not due later
+    return;
+  }
   // The step at 100 % is left to Finish()'s final line.
   const bool step_due = step_index > last_step_ && done < total_;
   const bool time_due = now_s - last_line_s_ >= options_.plain_interval_s;
@@ -153,9 +158,8 @@ void Progress::PrintPlainLocked(double done, double now_s) {
   } else {
     line += CountText(done) + " " + unit_;
   }
-  const std::string rate = RateText(done, elapsed_s);
-  if (!rate.empty()) line += ", " + rate;
-  if (total_ > 0.0 && done > 0.0 && elapsed_s > 0.0) {
+  if (elapsed_s >= kRateAfter_s) line += ", " + RateText(done, elapsed_s);
+  if (total_ > 0.0 && done > 0.0 && elapsed_s >= kRateAfter_s) {
     line += ", " + DurationText(std::max(0.0, total_ - done) * elapsed_s / done) + " left";
   }
   line += "\n";
@@ -176,9 +180,8 @@ void Progress::DrawBarLocked(double done, double now_s) {
   } else {
     line += CountText(done) + " " + unit_;
   }
-  const std::string rate = RateText(done, elapsed_s);
-  if (!rate.empty()) line += ", " + rate;
-  if (total_ > 0.0 && done > 0.0 && elapsed_s > 0.0) {
+  if (elapsed_s >= kRateAfter_s) line += ", " + RateText(done, elapsed_s);
+  if (total_ > 0.0 && done > 0.0 && elapsed_s >= kRateAfter_s) {
     line += ", " + DurationText(std::max(0.0, total_ - done) * elapsed_s / done) + " left";
   }
   // Pad over what the last redraw left on screen.
@@ -196,6 +199,7 @@ void Progress::Finish() {
   const double now_s = options_.clock();
   const double elapsed_s = now_s - start_s_;
   const double done = done_.load();
+  if (!terminal_ && elapsed_s < options_.plain_min_run_s) return;
   std::string line;
   if (terminal_ && bar_width_ > 0) line = "\r" + std::string(bar_width_, ' ') + "\r";
   line += what_ + ": " + CountText(done) + " " + unit_ + " in " +

@@ -297,6 +297,7 @@ class PlyBuilder {
     const auto ref = Reference(ply_.angle_rad, region);
     if (!ref) return false;
     if (Course(*ref, 0) == Added::kError) return false;
+    Report(static_cast<double>(plan_.courses.size()), 0.0);
     for (int side : {1, -1}) {
       SurfaceCurve curve = *ref;
       for (int index = 1;; ++index) {
@@ -306,6 +307,7 @@ class PlyBuilder {
         const Added a = Course(curve, side * index);
         if (a == Added::kError) return false;
         if (a == Added::kNothing) break;  // the ply is behind
+        Report(static_cast<double>(plan_.courses.size()), 0.0);
       }
     }
     return true;
@@ -329,11 +331,16 @@ class PlyBuilder {
     const std::vector<SurfaceCurve> lines = LaminateCourseLines(in);
     for (std::size_t i = 0; i < lines.size(); ++i) {
       if (Course(lines[i], -static_cast<int>(i)) == Added::kError) return false;
+      Report(static_cast<double>(i + 1), static_cast<double>(lines.size()));
     }
     return true;
   }
 
  private:
+  void Report(double done, double total) const {
+    if (options_.progress) options_.progress(done, total);
+  }
+
   const geom::Surface& surface_;
   const scene::PlySpec& ply_;
   const PlyPlanOptions& options_;

@@ -456,12 +456,20 @@ std::optional<RasterPlan> PlanRaster(const scene::Scene& scene, const RasterOpti
   plan.regions = o.strategy == RasterStrategy::kJump
                      ? JumpRegions(plan.footprints, setup->box, grid)
                      : BayRegions(plan.footprints, setup->box, grid);
+  for (const RasterRegion& r : plan.regions) plan.row_pieces += std::ssize(r.pieces);
+  double rows_done = 0.0;
+  const auto report = [&](const RasterRegion& r, double share) {
+    if (!o.progress) return;
+    rows_done += share * static_cast<double>(r.pieces.size());
+    o.progress(rows_done, static_cast<double>(plan.row_pieces));
+  };
   // Stitches per region: the header declares the total (verify's program.stitch_count).
   const detail::RowStepper stepper(*scene.surface, o.pitch_mm);
   for (RasterRegion& r : plan.regions) {
     for (const RasterRowPiece& p : r.pieces)
       r.stitches += stepper.Count(p.u_begin_mm, p.u_end_mm, p.v_mm);
     plan.stitches += r.stitches;
+    report(r, detail::kProgressCountShare);
   }
   const auto per_head = SplitAmongHeads(plan.regions, plan.stitches, setup->working.size());
   PassBuilder passes(*scene.surface, plan);
@@ -472,6 +480,7 @@ std::optional<RasterPlan> PlanRaster(const scene::Scene& scene, const RasterOpti
     section.regions = per_head[hi].size();
     for (std::size_t ri : per_head[hi]) {
       passes.Region(plan.regions[ri], section.passes.empty(), section.passes);
+      report(plan.regions[ri], detail::kProgressPassShare);
     }
     plan.sections.push_back(std::move(section));
   }

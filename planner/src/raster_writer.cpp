@@ -1,6 +1,7 @@
 // A raster plan as programme text: the opening, per head section M60 P<head>, per pass its
 // transit (needles out; retract, fly and lower for a jump), M10 and one coupled G1 per
 // stitch, user code blocks at their events, the ending.
+#include <algorithm>
 #include <cstdio>
 #include <ostream>
 
@@ -24,14 +25,15 @@ std::string Num(double v) {
 class RasterWriter {
  public:
   RasterWriter(const RasterPlan& plan, const scene::Scene& scene, const program::Dialect& dialect,
-               std::ostream& out)
+               std::ostream& out, const PlanProgress& progress)
       : plan_(plan),
         scene_(scene),
         surface_(*scene.surface),
         dialect_(dialect),
         stepper_(surface_, plan.pitch_mm),
         w_(out, dialect),
-        pose_words_(dialect) {
+        pose_words_(dialect),
+        progress_(progress) {
     const auto& st = scene.head.stitch;
     feed_mm_min_ = st.stitch_rate_per_min * plan.pitch_mm;
     stitch_time_s_ = 60.0 / st.stitch_rate_per_min;
@@ -62,6 +64,7 @@ class RasterWriter {
     }
     StitchingOff();
     detail::WriteEnding(w_, b_, dialect_);
+    if (progress_) progress_(rows_, rows_);
     return sum_;
   }
 
@@ -172,6 +175,10 @@ class RasterWriter {
       u = stepper_.Next(u, v, dir);
       Stitch(u, v, dir, head);
     }
+    if (progress_) {
+      rows_done_ += detail::kProgressWriteShare;
+      progress_(std::min(rows_done_, rows_), rows_);
+    }
   }
 
   const RasterPlan& plan_;
@@ -182,6 +189,10 @@ class RasterWriter {
   program::ProgramWriter w_;
   program::Block b_;
   detail::PoseWords pose_words_;
+  const PlanProgress& progress_;
+  const double rows_ = static_cast<double>(plan_.row_pieces);  // progress: all row pieces
+  // Rows done when writing starts: PlanRaster counted and passed every piece.
+  double rows_done_ = rows_ * (detail::kProgressCountShare + detail::kProgressPassShare);
   RasterSummary sum_;
   double feed_mm_min_ = 0.0;
   double stitch_time_s_ = 0.0;
@@ -194,8 +205,9 @@ class RasterWriter {
 }  // namespace
 
 RasterSummary WriteRasterProgram(const RasterPlan& plan, const scene::Scene& scene,
-                                 const program::Dialect& dialect, std::ostream& out) {
-  return RasterWriter(plan, scene, dialect, out).Write();
+                                 const program::Dialect& dialect, std::ostream& out,
+                                 const PlanProgress& progress) {
+  return RasterWriter(plan, scene, dialect, out, progress).Write();
 }
 
 std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene,
@@ -204,7 +216,7 @@ std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene,
                                                 DiagnosticSink& sink) {
   const std::optional<RasterPlan> plan = PlanRaster(scene, options, sink);
   if (!plan) return std::nullopt;
-  return WriteRasterProgram(*plan, scene, dialect, out);
+  return WriteRasterProgram(*plan, scene, dialect, out, options.progress);
 }
 
 }  // namespace stitchsim::planner

@@ -66,6 +66,7 @@ std::optional<StitchPathPlanner> StitchPathPlanner::Create(const scene::Scene& s
   }
   p.mode_ = options.mode;
   p.evaluate_coupled_ = options.mode == Mode::kAuto || options.evaluate_coupled;
+  p.progress_ = options.progress;
   p.count_ = *n;
   p.stitch_length_mm_ = p.path_.Length() / *n;
   p.process_ = process::MakeProcessModel(scene, p.stitch_length_mm_);
@@ -167,6 +168,7 @@ bool StitchPathPlanner::Next(PlannedStitch& out) {
   current_ = following_;
   current_frame_ = end_frame;
   if (i < count_) following_ = after;
+  if (progress_) progress_(i, count_);
   return true;
 }
 

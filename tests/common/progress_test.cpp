@@ -106,6 +106,34 @@ TEST(Progress, UnknownTotalPrintsCountsAndRate) {
   EXPECT_EQ(lines[1], "verify: 5000 lines in 10.0 s (500 lines/s)");
 }
 
+TEST(Progress, PlainMinRunKeepsShortRunsOutOfTheLog) {
+  MemoryFile out;
+  double t = 0.0;
+  Progress::Options options = Plain(out, t);
+  options.plain_min_run_s = 1.0;
+  {
+    Progress progress("plan", "rows", 100, options);
+    for (int i = 1; i <= 100; ++i) {
+      t = i / 200.0;  // half a second in all
+      progress.Add(1);
+    }
+  }
+  EXPECT_EQ(out.Text(), "");
+  t = 0.0;
+  Progress progress("plan", "rows", 100, options);
+  for (int i = 1; i <= 100; ++i) {
+    t = i / 50.0;  // two seconds: the 10 % .. 40 % steps fall in the first second
+    progress.Add(1);
+  }
+  progress.Finish();
+  const std::vector<std::string> lines = Lines(out.Text());
+  ASSERT_EQ(lines.size(), 6u) << out.Text();
+  // 50 rows at 1 s: 50 rows/s, 50 left = 1 s.
+  EXPECT_EQ(lines[0], "plan: 50 % (50 of 100 rows), 50 rows/s, 1 s left");
+  EXPECT_EQ(lines[4].rfind("plan: 90 % (90 of 100 rows)", 0), 0u) << lines[4];
+  EXPECT_EQ(lines[5], "plan: 100 rows in 2.0 s (50 rows/s)");
+}
+
 TEST(Progress, DisabledPrintsNothing) {
   MemoryFile out;
   double t = 0.0;
@@ -184,6 +212,8 @@ TEST(Progress, TerminalRedrawsInPlaceUntilFinish) {
   const std::string drawn = out.Text();
   EXPECT_EQ(drawn.find('\n'), std::string::npos);
   EXPECT_EQ(std::count(drawn.begin(), drawn.end(), '\r'), 100);
+  // No rate nor time left in the first second (start-up would skew them).
+  EXPECT_EQ(drawn.rfind("\rverify [....................]   1 % 1/100 lines\r", 0), 0u) << drawn;
   // Half way: 50 lines in 6.25 s, 50 left at 8 lines/s = 6.25 s.
   EXPECT_NE(drawn.find("\rverify [##########..........]  50 % 50/100 lines, 8 lines/s, 6 s left"),
             std::string::npos);

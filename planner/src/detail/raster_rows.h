@@ -10,6 +10,13 @@
 
 namespace stitchsim::planner::detail {
 
+// Shares of a raster run's time per row piece (RasterOptions::progress): counting its
+// stitches, building its passes, writing them. Measured on the whole wing cover (2590 rows,
+// 1.66 million stitches; jump and serpentine): about 0.2 s, 0.2-0.4 s and 2.2 s.
+inline constexpr double kProgressCountShare = 0.1;
+inline constexpr double kProgressPassShare = 0.1;
+inline constexpr double kProgressWriteShare = 0.8;
+
 /// Steps along a row (v fixed) at an exact 3D chord of `pitch`.
 class RowStepper {
  public:

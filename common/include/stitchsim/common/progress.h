@@ -22,6 +22,9 @@ class Progress {
     std::FILE* out = stderr;            ///< where lines go; never stdout for a command's output
     double plain_interval_s = 10.0;     ///< without a terminal: a line at least this often ...
     double plain_step_fraction = 0.10;  ///< ... and at every 10 % of the total (0: never)
+    /// Without a terminal: no line at all during the first this many seconds, and no final line
+    /// for a run shorter than that (a short run stays out of the log). 0: every line.
+    double plain_min_run_s = 0.0;
     std::function<double()> clock;  ///< seconds, monotonic; default steady_clock (tests fake it)
   };
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "stitchsim/common/diagnostics.h"
+#include "stitchsim/planner/plan_progress.h"
 #include "stitchsim/process/afp_tows.h"
 #include "stitchsim/program/dialect.h"
 #include "stitchsim/scene/scene.h"
@@ -28,6 +29,9 @@ struct PlyPlanOptions {
   double merge_tol_mm = 0.01;     ///< events this close share one programme point
   double max_substep_mm = 0.0;    ///< tow walks (process::TowsAt; 0: its default)
   int max_courses = 2000;         ///< a ply needing more is an error
+  /// After each course: band offset plies (courses laid so far, 0: the count is found as they
+  /// go), laminate family plies (course lines done, course lines). Null: not called.
+  PlanProgress progress;
 };
 
 /// One point of a course: the tool pose (z = surface normal towards the head, y = the course

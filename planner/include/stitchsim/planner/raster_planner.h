@@ -15,6 +15,7 @@
 
 #include "stitchsim/common/diagnostics.h"
 #include "stitchsim/planner/code_library.h"
+#include "stitchsim/planner/plan_progress.h"
 #include "stitchsim/program/dialect.h"
 #include "stitchsim/scene/footprint.h"
 #include "stitchsim/scene/scene.h"
@@ -40,6 +41,10 @@ struct RasterOptions {
   /// Stitch only this (u, v) window (mm); default the whole surface domain.
   std::optional<Eigen::AlignedBox2d> region;
   UserCodeLibrary library;
+  /// (rows so far, rows): the plan's row pieces, each counted 0.1 when its stitches are
+  /// counted, 0.1 when its passes are built (PlanRaster) and 0.8 when it is written
+  /// (WriteRasterProgram), about the shares of the run's time they take. Null: not called.
+  PlanProgress progress;
 };
 
 /// The defaults with the scene's `raster:` values (pitch, row spacing, margin) where it gives
@@ -96,6 +101,7 @@ struct RasterPlan {
   std::vector<scene::Footprint> footprints;  ///< grown by the margin and the head's keep-out
   double flight_clearance_mm = 0.0;  ///< jumps fly this high at least: tallest constraint + lift
   std::vector<RasterRegion> regions;
+  long row_pieces = 0;                  ///< pieces over all regions (the progress's rows)
   std::vector<RasterSection> sections;  ///< working heads that got regions, in head order
   long stitches = 0;                    ///< the header's total: the regions' stitches
   UserCodeLibrary library;
@@ -123,8 +129,10 @@ struct RasterSummary {
 
 /// Writes `plan` (made for `scene`) as a programme (mm, G90, one coupled G1 per stitch)
 /// through the dialect's writer, streaming: memory does not grow with the stitches.
+/// `progress` as RasterOptions::progress (from where PlanRaster left it).
 RasterSummary WriteRasterProgram(const RasterPlan& plan, const scene::Scene& scene,
-                                 const program::Dialect& dialect, std::ostream& out);
+                                 const program::Dialect& dialect, std::ostream& out,
+                                 const PlanProgress& progress = nullptr);
 
 /// PlanRaster, then WriteRasterProgram.
 std::optional<RasterSummary> WriteRasterProgram(const scene::Scene& scene,

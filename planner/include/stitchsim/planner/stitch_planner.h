@@ -12,6 +12,7 @@
 
 #include "stitchsim/common/diagnostics.h"
 #include "stitchsim/geom/curve.h"
+#include "stitchsim/planner/plan_progress.h"
 #include "stitchsim/process/stitch_cycle.h"
 #include "stitchsim/program/dialect.h"
 #include "stitchsim/scene/scene.h"
@@ -28,6 +29,8 @@ struct StitchPlanOptions {
   /// Evaluate what a coupled line would do for every stitch even when the mode does not
   /// need it (auto mode always does).
   bool evaluate_coupled = false;
+  /// After each stitch Next() returns: (stitches so far, stitch count). Null: not called.
+  PlanProgress progress;
 };
 
 /// One stitch as planned. Poses are tool-point poses in the part frame (translation mm).
@@ -86,6 +89,7 @@ class StitchPathPlanner {
   process::NeedleLimits limits_;
   Mode mode_ = Mode::kAuto;
   bool evaluate_coupled_ = true;
+  PlanProgress progress_;
   int count_ = 0;
   double stitch_length_mm_ = 0.0;
   int next_index_ = 1;
