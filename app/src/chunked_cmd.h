@@ -20,7 +20,7 @@ struct ChunkedInvocation {
   int shard = 0, shards = 0;  ///< --shard I/N (0: the whole programme)
   std::string part;           ///< --shard: the partial result file
   int chunk_lines = 16384;    ///< cut at the first safe point after this many lines
-  int warm_lines = 256;       ///< each chunk's warm-up, lines
+  int warm_lines = 128;       ///< each chunk's warm-up, lines
 };
 
 struct ChunkedOutcome {

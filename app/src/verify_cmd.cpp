@@ -45,7 +45,7 @@ struct VerifyArgs {
   std::string shard;  ///< "I/N"
   std::string part;   ///< --shard: the partial result file
   int chunk_lines = 16384;
-  int warm_lines = 256;
+  int warm_lines = 128;
 };
 
 // The programme's header against the scene it is verified on: a programme written for

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <string>
 #include <unordered_map>
@@ -83,6 +84,7 @@ class Executor {
     Pose from = have_pose_ ? current_ : to;
     const LinePlan plan = PlanLine(from, to, after, step, line);
     sink_.OnLine(plan.rec);
+    memo_.clear();
     PlanSamples(from, to, plan, samples_);
     if (options_.collision != nullptr && options_.collision_subdivide) {
       SubdivideForCollision(from, to, samples_);
@@ -229,7 +231,7 @@ class Executor {
 
   // Joints at the sample, continuous with the previous usable ones.
   void SolveSample(const Pose& from, const Pose& to, double s, TraceSample& t) {
-    const ToolPoseSolution sol = SolveAt(from, to, s, have_joints_ ? &joints_ : nullptr);
+    const ToolPoseSolution sol = Solved(from, to, s, have_joints_ ? &joints_ : nullptr);
     t.has_joints = true;
     t.ik_status = sol.ik.status;
     t.joints = sol.ik.joints;
@@ -316,6 +318,7 @@ class Executor {
   // line in order, as the emitting loop will, and inserts fractions where the motion bound
   // MaxPointTravel to the next sample exceeds the clearance at the previous one.
   void SubdivideForCollision(const Pose& from, const Pose& to, SampleList& samples) {
+    memo_.clear();
     JointVector prev = joints_;
     bool have_prev = have_joints_ && have_pose_;
     double prev_s = 0.0;
@@ -330,6 +333,8 @@ class Executor {
       if (first && have_pose_) continue;
       const double s = samples[i].first;
       ToolPoseSolution sol = SolveAt(from, to, s, have_joints_ || have_prev ? &prev : nullptr);
+      const bool sol_had_prev = have_joints_ || have_prev;
+      JointVector sol_prev = prev;
       const auto usable = [](const ToolPoseSolution& x) { return trace::IkUsable(x.ik.status); };
       // In contact the sample itself reports it: no need to creep on. Near contact (even
       // touching) the step never falls below the minimum, so the walk ends.
@@ -341,13 +346,16 @@ class Executor {
         const double f = std::clamp(allowed / travel, 1.0 / 4096.0, 0.5);
         const double mid = prev_s + f * (s - prev_s);
         const ToolPoseSolution m = SolveAt(from, to, mid, &prev);
+        Memo(mid, &prev, m);
         if (!usable(m)) break;
         extra.push_back(mid);
         prev = m.ik.joints;
         prev_s = mid;
         clearance = ClearanceAt(prev);
         sol = SolveAt(from, to, s, &prev);
+        sol_prev = prev;
       }
+      Memo(s, sol_had_prev ? &sol_prev : nullptr, sol);
       if (usable(sol)) {
         prev = sol.ik.joints;
         have_prev = true;
@@ -358,6 +366,29 @@ class Executor {
     if (extra.empty()) return;
     for (double s : extra) samples.emplace_back(s, kCollisionProbe);
     SortSamples(samples);
+  }
+
+  // The subdivision solves the samples it walks; emitting them asks the same questions again
+  // (same fraction, same previous joints, bit for bit): the answer is taken from it.
+  struct Memoized {
+    double s;
+    bool has_previous;
+    JointVector previous;
+    ToolPoseSolution solution;
+  };
+  void Memo(double s, const JointVector* previous, const ToolPoseSolution& solution) {
+    memo_.push_back(
+        {s, previous != nullptr, previous != nullptr ? *previous : JointVector::Zero(), solution});
+  }
+  ToolPoseSolution Solved(const Pose& from, const Pose& to, double s, const JointVector* previous) {
+    for (const Memoized& m : memo_) {
+      if (m.s == s && m.has_previous == (previous != nullptr) &&
+          (previous == nullptr ||
+           std::memcmp(m.previous.data(), previous->data(), sizeof(double) * kNumJoints) == 0)) {
+        return m.solution;
+      }
+    }
+    return SolveAt(from, to, s, previous);
   }
 
   void SeedJoints(const JointVector& q) {
@@ -418,6 +449,7 @@ class Executor {
   double time_s_ = 0.0;
   std::vector<double> fractions_, entries_, exits_;
   SampleList samples_;
+  std::vector<Memoized> memo_;  ///< this line's solutions from the collision subdivision
   std::unordered_map<std::string, int> body_index_;  ///< CollisionWorld::BodyNames() order
 };
 

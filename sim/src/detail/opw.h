@@ -16,6 +16,8 @@ inline constexpr double kPiD = 3.141592653589793238462643383279;
 
 /// Angle wrapped to (-pi, pi].
 inline double WrapToPi(double angle_rad) {
+  // Already there (most calls): std::remainder would return it unchanged, at many times the cost.
+  if (angle_rad > -kPiD && angle_rad <= kPiD) return angle_rad;
   double wrapped = std::remainder(angle_rad, kTwoPi);  // [-pi, pi]
   if (wrapped <= -kPiD) wrapped += kTwoPi;
   return wrapped;

@@ -48,7 +48,7 @@ struct ScanOptions {
   /// Cut at the first safe point after every this many lines (0: do not cut).
   int chunk_lines = 16384;
   /// Each chunk's warm-up: at least this many lines before its first line.
-  int warm_lines = 256;
+  int warm_lines = 128;
 };
 
 struct ScanResult {
