@@ -122,6 +122,20 @@ nlohmann::json PartJson(const ChunkedInvocation& inv, const VerifySession& vs,
     return j;
   }
   j["chunks"] = {indices.front(), indices.back()};
+  if (scan.chunks == 1) {
+    // Not cut (fibre placement, or a programme with no safe point): this part is the whole
+    // run; its reports are finished here (the afp.* rules cannot be carried in a part).
+    const trace::TraceFileSummary summary{scan.summary.lines, scan.summary.moves,
+                                          scan.summary.time_s, run->timed.Value()};
+    verify::Report report =
+        RunReport(inv.program, inv.scene, *vs.ls.scene, vs.stitch_length_mm, summary);
+    run->verifier->Finish(report);
+    j["complete"] = {{"text", verify::ReportToText(report)},
+                     {"json", verify::ReportToJson(report)},
+                     {"junit", verify::ReportToJunit(report)},
+                     {"errors", report.errors}};
+    return j;
+  }
   j["timed_sum"] = run->timed.Hex();
   j["start"] = run->start.Hex();
   j["end"] = run->end.Hex();
@@ -199,11 +213,12 @@ int RunChunkedVerify(const ChunkedInvocation& inv, VerifySession& vs, sim::Progr
   setup.execute = vs.execute;
   setup.timing = vs.timing;
   setup.rules = vs.Rules();
-  setup.keep_stitch_marks = false;
+  setup.keep_stitch_marks = inv.stitch_marks;
   const auto tick = [&] {
     if (!progress && scanned) {
       Progress::Options po;
       po.enabled = !inv.quiet;
+      po.plain_min_run_s = 1.0;  // a short run writes no progress into a log
       progress = std::make_unique<Progress>("verify", "lines",
                                             static_cast<double>(lines_total.load()), po);
     }

@@ -16,6 +16,7 @@ namespace stitchsim::app {
 struct ChunkedInvocation {
   std::string program, scene, dialect;
   bool no_collision = false, allow_mismatch = false, quiet = false;
+  bool stitch_marks = false;  ///< keep every stitch's verdict (--snapshots' overview)
   int jobs = 0;               ///< 0: the number of cores
   int shard = 0, shards = 0;  ///< --shard I/N (0: the whole programme)
   std::string part;           ///< --shard: the partial result file

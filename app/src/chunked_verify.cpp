@@ -250,9 +250,17 @@ sim::Chunk ChunkMerger::Rerun(const sim::Chunk& next) const {
   return c;
 }
 
-ChunkedRun RunChunks(const ChunkSetup& setup, int jobs, bool starts_at_zero,
-                     const std::function<std::optional<sim::Chunk>()>& next_chunk,
-                     std::atomic<long>* lines_done, const std::function<void()>& tick) {
+namespace {
+
+// The workers' side of RunChunks: chunks to run (new ones from the source, re-runs first),
+// results by chunk index.
+struct WorkPool {
+  WorkPool(const ChunkSetup& s, const std::function<std::optional<sim::Chunk>()>& source,
+           std::atomic<long>* done_lines)
+      : setup(s), next_chunk(source), lines_done(done_lines) {}
+  const ChunkSetup& setup;
+  const std::function<std::optional<sim::Chunk>()>& next_chunk;
+  std::atomic<long>* lines_done;
   std::mutex m;
   std::condition_variable cv;
   std::map<int, ChunkResult> done;
@@ -260,8 +268,8 @@ ChunkedRun RunChunks(const ChunkSetup& setup, int jobs, bool starts_at_zero,
   std::deque<sim::Chunk> reruns;
   bool exhausted = false, stop = false;
   int source_busy = 0;  // workers inside next_chunk
-  int running = 0;      // workers inside RunChunk
-  auto worker = [&] {
+
+  void Work() {
     std::unique_lock lock(m);
     for (;;) {
       cv.wait(lock, [&] { return stop || !reruns.empty() || (!exhausted && source_busy == 0); });
@@ -285,17 +293,28 @@ ChunkedRun RunChunks(const ChunkSetup& setup, int jobs, bool starts_at_zero,
         pending[c.index] = c;
         cv.notify_all();
       }
-      ++running;
       lock.unlock();
       ChunkResult r = RunChunk(setup, c, lines_done);
       lock.lock();
-      --running;
       done[c.index] = std::move(r);
       cv.notify_all();
     }
-  };
+  }
+};
+
+}  // namespace
+
+ChunkedRun RunChunks(const ChunkSetup& setup, int jobs, bool starts_at_zero,
+                     const std::function<std::optional<sim::Chunk>()>& next_chunk,
+                     std::atomic<long>* lines_done, const std::function<void()>& tick) {
+  WorkPool pool(setup, next_chunk, lines_done);
+  std::mutex& m = pool.m;
+  std::condition_variable& cv = pool.cv;
+  std::map<int, ChunkResult>& done = pool.done;
+  std::map<int, sim::Chunk>& pending = pool.pending;
+  std::deque<sim::Chunk>& reruns = pool.reruns;
   std::vector<std::thread> threads;
-  for (int i = 0; i < std::max(1, jobs); ++i) threads.emplace_back(worker);
+  for (int i = 0; i < std::max(1, jobs); ++i) threads.emplace_back([&pool] { pool.Work(); });
   ChunkedRun out;
   ChunkMerger merger;
   {
@@ -305,7 +324,7 @@ ChunkedRun RunChunks(const ChunkSetup& setup, int jobs, bool starts_at_zero,
       if (first < 0 && !pending.empty()) first = pending.begin()->first;
       const int next = first + merger.Taken();
       cv.wait_for(lock, std::chrono::milliseconds(500), [&] {
-        return (first >= 0 && done.count(next) > 0) || (exhausted && pending.empty());
+        return (first >= 0 && done.count(next) > 0) || (pool.exhausted && pending.empty());
       });
       if (tick) {
         lock.unlock();
@@ -316,7 +335,7 @@ ChunkedRun RunChunks(const ChunkSetup& setup, int jobs, bool starts_at_zero,
       auto it = first >= 0 ? done.find(next) : done.end();
       if (it == done.end()) {
         // Every chunk the first pass found (for this process) is merged.
-        if (exhausted && pending.empty() && source_busy == 0) {
+        if (pool.exhausted && pending.empty() && pool.source_busy == 0) {
           out.ok = merger.Taken() > 0;
           if (!out.ok) out.error = "no chunk to run";
           break;
@@ -351,7 +370,7 @@ ChunkedRun RunChunks(const ChunkSetup& setup, int jobs, bool starts_at_zero,
       }
       pending.erase(next);
     }
-    stop = true;
+    pool.stop = true;
     cv.notify_all();
   }
   for (auto& t : threads) t.join();

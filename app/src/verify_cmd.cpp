@@ -318,6 +318,7 @@ int RunChunked(const VerifyArgs& a, VerifySession& vs, sim::ProgramInput& input,
   inv.no_collision = a.no_collision;
   inv.allow_mismatch = a.allow_mismatch;
   inv.quiet = a.quiet;
+  inv.stitch_marks = !a.snapshots.empty();
   inv.jobs = a.jobs;
   if (!a.shard.empty() && !ParseShard(a.shard, inv.shard, inv.shards)) return kExitBadInput;
   inv.part = a.part;
@@ -344,6 +345,8 @@ int RunVerify(const VerifyArgs& a) {
                         {"--part", a.part}})) {
     return kExitBadInput;
   }
+  int shard = 0, shards = 0;
+  if (!a.shard.empty() && !ParseShard(a.shard, shard, shards)) return kExitBadInput;
   if (a.shard.empty() != a.part.empty()) {
     PrintError("cli-usage", "--shard I/N and --part FILE go together");
     return kExitBadInput;
