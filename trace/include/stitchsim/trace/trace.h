@@ -117,6 +117,8 @@ struct TraceSample {
   /// the time on it since the first line; with joints, the joint velocities (m/s, rad/s),
   /// accelerations (m/s^2, rad/s^2) and the torques/forces MuJoCo's inverse dynamics needs to
   /// move the cell so (N m, N for the rail; gravity, inertia, Coriolis, joint friction).
+  /// In a chunked run (verify --jobs/--shard) `timed_s` counts from the chunk's warm-up start,
+  /// not the programme's: rules must not read it (the saved trace, made serially, has it whole).
   bool has_timing = false;
   double timed_s = 0.0;
   JointVector joint_velocities = JointVector::Zero();
