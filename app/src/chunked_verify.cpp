@@ -294,7 +294,14 @@ struct WorkPool {
         cv.notify_all();
       }
       lock.unlock();
-      ChunkResult r = RunChunk(setup, c, lines_done);
+      ChunkResult r;
+      try {
+        r = RunChunk(setup, c, lines_done);
+      } catch (const std::exception& e) {  // a bug: reported by the merging thread, exit 3
+        r.chunk = c;
+        r.ok = false;
+        r.error = e.what();
+      }
       lock.lock();
       done[c.index] = std::move(r);
       cv.notify_all();
@@ -352,8 +359,18 @@ ChunkedRun RunChunks(const ChunkSetup& setup, int jobs, bool starts_at_zero,
       const bool r_warm_start = r.chunk.warm.programme_start;
       const std::uint64_t r_warm_bytes = r.chunk.warm.reader.bytes;
       lock.unlock();
-      const ChunkMerger::Outcome outcome = merger.Add(std::move(r));
+      ChunkMerger::Outcome outcome = ChunkMerger::Outcome::kTaken;
+      std::string merge_error;
+      try {
+        outcome = merger.Add(std::move(r));
+      } catch (const std::exception& e) {  // a bug (e.g. a part ending with the needles in)
+        merge_error = e.what();
+      }
       lock.lock();
+      if (!merge_error.empty()) {
+        out.error = merge_error;
+        break;
+      }
       if (outcome == ChunkMerger::Outcome::kRerun) {
         if (!(as_planned.warm.programme_start == r_warm_start &&
               as_planned.warm.reader.bytes == r_warm_bytes)) {
