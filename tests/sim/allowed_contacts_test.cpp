@@ -87,7 +87,7 @@ int PlanAndVerify(const fs::path& scene, const std::string& tag, std::string& ou
       "plan stitch --scene " + scene.string() + " --path row --mode decoupled -o " + nc.string(),
       log);
   EXPECT_EQ(plan, 0) << Slurp(log);
-  const int rc = RunCli("verify " + nc.string() + " --scene " + scene.string(), log);
+  const int rc = RunCli("verify " + nc.string() + " --scene " + scene.string() + " --quiet", log);
   out = Slurp(log);
   return rc;
 }
@@ -173,7 +173,8 @@ TEST(AllowedContactsTest, UnknownHeadGeomIsBadInputAtItsLine) {
   const fs::path nc = TestDir() / "typo.nc";
   std::ofstream(nc) << "%\nG21 G90\nT1 M6\nG0 X-300 Y0 Z0 A0 B0 C-90 U0 V0\nM30\n%\n";
   const fs::path log = TestDir() / "typo.txt";
-  EXPECT_EQ(RunCli("verify " + nc.string() + " --scene " + scene.string(), log), 2) << Slurp(log);
+  EXPECT_EQ(RunCli("verify " + nc.string() + " --scene " + scene.string() + " --quiet", log), 2)
+      << Slurp(log);
   const std::string where =
       head.string() + ":" + std::to_string(LineOf(text, "{head: needle_insertoin")) + ":";
   EXPECT_NE(Slurp(log).find(where), std::string::npos) << Slurp(log);
