@@ -147,9 +147,9 @@ struct LineRecord {
   /// included; 0 when the trace is not timed. Filled before the line's samples reach a sink
   /// behind the timing sink.
   double timed_duration_s = 0.0;
-  double feed_mm_per_min = 0.0;                   ///< modal F (0 if none)
-  bool stitching = false;                         ///< M10 in force
-  bool head_retracted = false;                    ///< M20 in force
+  double feed_mm_per_min = 0.0;  ///< modal F (0 if none)
+  bool stitching = false;        ///< M10 in force
+  bool head_retracted = false;   ///< M20 in force
   /// AFP: the tows laying on this line (bit i = tow i + 1; the modal mask once the line's
   /// M62/M63 are applied, so in force during its move), the ply (M70 P, 0 before any) and the
   /// open course (M71 P, 0 outside a course). docs/program-format.md, "Fibre placement".
