@@ -30,6 +30,7 @@ class Cutter {
   void Before(const program::Block& block) {
     if (!cut_pending_) return;
     cut_pending_ = false;
+    if (first_cut_line_ == 0) first_cut_line_ = block.source_line;
     if (have_open_) Emit(block.source_line);
     open_ = Chunk{};
     open_.index = next_index_++;
@@ -103,13 +104,7 @@ class Cutter {
   Chunk open_;
   bool have_open_ = false;
   int next_index_ = 1;
-
- public:
   int first_cut_line_ = 0;  ///< chunk 1's first line (0: no cut)
-  void NoteFirstCut(int line) {
-    if (first_cut_line_ == 0) first_cut_line_ = line;
-  }
-  bool CutPending() const { return cut_pending_; }
 };
 
 // Discards everything (the first pass sends nothing anyway).
@@ -140,7 +135,6 @@ ScanResult ScanProgram(const CellSetup& cell, const process::ProcessModel& proce
   detail::BlockHooks hooks;
   hooks.dry = true;
   hooks.before = [&](const program::Block& block) {
-    if (cutter.CutPending()) cutter.NoteFirstCut(block.source_line);
     cutter.Before(block);
     return true;
   };
@@ -225,9 +219,7 @@ ExecutionSummary ExecuteChunk(const CellSetup& cell, const process::ProcessModel
     return !(hooks.stop && hooks.stop());
   };
   const std::size_t errors_before = diagnostics.ErrorCount();
-  const bool to_end =
-      detail::RunBlocks(*reader, state, exec, dialect, path, o, diagnostics, summary, run);
-  (void)to_end;
+  detail::RunBlocks(*reader, state, exec, dialect, path, o, diagnostics, summary, run);
   summary.lines = reader->LineCount();
   summary.time_s = exec.Time();
   summary.ok = diagnostics.ErrorCount() == errors_before;
