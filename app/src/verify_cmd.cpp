@@ -1,5 +1,4 @@
 // `stitchsim verify`: execute a programme on the cell, check every stitch and pose, report.
-#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <chrono>
@@ -14,6 +13,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "stitchsim/common/files.h"
+#include "stitchsim/common/progress.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/process/stitch_cycle.h"
 #include "stitchsim/program/dialect.h"
@@ -69,29 +69,31 @@ bool HeaderFitsScene(const program::ProgramIdentity& id, const program::ProgramH
   return ok;
 }
 
-// Passes the trace on and shows progress on a terminal.
+// Passes the trace on and shows its progress (common/progress.h).
 class ProgressSink : public sim::TraceSink {
  public:
-  ProgressSink(sim::TraceSink& next, bool show) : next_(next), show_(show) {}
+  /// The serial run has no first pass: the total is unknown (counts and rate only).
+  ProgressSink(sim::TraceSink& next, bool quiet)
+      : next_(next), progress_("verify", "lines", 0.0, [&] {
+          Progress::Options o;
+          o.enabled = !quiet;
+          o.plain_min_run_s = 1.0;  // a short run writes no progress into a log
+          return o;
+        }()) {}
   void OnLine(const sim::LineRecord& line) override {
     next_.OnLine(line);
-    if (show_ && ++lines_ % 20000 == 0) {
-      std::fprintf(stderr, "\rverify: %ld lines, %ld stitches ...", lines_, stitches_);
+    if (line.source_line > passed_) {
+      progress_.Add(line.source_line - passed_);
+      passed_ = line.source_line;
     }
   }
-  void OnSample(const sim::TraceSample& s) override {
-    if (s.event == sim::SampleEvent::kNeedleEntry) ++stitches_;
-    next_.OnSample(s);
-  }
-  void Done() const {
-    if (show_ && lines_ >= 20000) std::fprintf(stderr, "\r%60s\r", "");
-  }
+  void OnSample(const sim::TraceSample& s) override { next_.OnSample(s); }
+  void Done() { progress_.Finish(); }
 
  private:
   sim::TraceSink& next_;
-  bool show_;
-  long lines_ = 0;
-  long stitches_ = 0;
+  Progress progress_;
+  int passed_ = 0;  ///< programme lines passed
 };
 
 // Sends the trace to the verifier and, with --save-trace, to the trace file.
@@ -282,7 +284,7 @@ int RunSerial(const VerifyArgs& a, VerifySession& vs, sim::ProgramInput& input,
   if (a.dynamics) physics.emplace(*vs.mj.physics, *vs.mj.physics_poses, tee);
   sim::TimingSink timing(*vs.mj.timing, *vs.ls.robot, vs.timing,
                          physics ? static_cast<trace::TraceSink&>(*physics) : tee);
-  ProgressSink progress(timing, !a.quiet && ::isatty(2) != 0);
+  ProgressSink progress(timing, a.quiet);
   const auto started = std::chrono::steady_clock::now();
   const sim::ExecutionSummary run =
       sim::ExecuteProgram(vs.cell, *vs.model, input, vs.execute, diagnostics, progress);
