@@ -44,13 +44,12 @@ verify() {  # verify NAME SCENE [extra verify args]
     --junit "$W/$name.xml" "$@"
 }
 
-paths_of() {
-  awk '/^paths:/{p=1;next} p&&/^[a-z]/{p=0} p&&/name:/{sub(/.*name: */,"");sub(/[,} ].*/,"");print}' "$1"
-}
+# shellcheck source=lib/scenes.sh
+source "$ROOT/scripts/lib/scenes.sh"
 
 for scene in scenes/*.yaml; do
   base=$(basename "$scene" .yaml)
-  head=$(awk '/^head:/{print $2; exit}' "$scene")
+  head=$(head_of "$scene")
   if [[ $base == wing_cover ]]; then
     ((WING)) || continue
     name=$base.jump
