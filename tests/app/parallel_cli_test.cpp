@@ -172,6 +172,29 @@ TEST(ReportMerge, AMissingOrCutShortPartIsNamed) {
   EXPECT_FALSE(fs::exists(json));
 }
 
+// A part whose start state is not where the part before it ended (a shard that warmed up to
+// another arm branch or controller speed) is refused, not merged into a wrong report.
+TEST(ReportMerge, APartStartingFromAnotherStateIsRefused) {
+  const std::vector<fs::path> parts = Shards("state");
+  ASSERT_EQ(RunCli("report merge " + Join(parts), "state_ok").exit_code, 1);
+  for (std::size_t k = 1; k < parts.size(); ++k) {
+    nlohmann::json j = nlohmann::json::parse(ReadText(parts[k]));
+    if (j["chunks"].is_null()) continue;
+    std::string start = j["start"];
+    // One hex digit of the executor's joints changed: a state that differs in one bit.
+    const std::size_t digit = start.find(':') + 1;
+    start[digit] = start[digit] == '0' ? '1' : '0';
+    j["start"] = start;
+    std::ofstream(parts[k], std::ios::trunc) << j.dump() << "\n";
+    const auto run = RunCli("report merge " + Join(parts), "state_bad");
+    EXPECT_EQ(run.exit_code, 2) << run.out;
+    EXPECT_NE(run.err.find("part-boundary"), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find(parts[k].filename().string()), std::string::npos) << run.err;
+    return;
+  }
+  FAIL() << "no part after the first holds chunks";
+}
+
 TEST(ReportMerge, PartsOfDifferentRunsAreRefused) {
   const std::vector<fs::path> a = Shards("runa");
   const std::vector<fs::path> b = Shards("runb", " --no-collision");
