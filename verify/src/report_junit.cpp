@@ -15,66 +15,14 @@
 namespace stitchsim::verify {
 namespace {
 
-using detail::AppendUtf8;
 using detail::Count;
 using detail::FormatNumber;
-using detail::kInvalidCodePoint;
-using detail::kReplacementChar;
 using detail::Location;
-using detail::NextCodePoint;
-
-// XML 1.0 "Char": tab, newline, carriage return, and U+0020 and up except the surrogates
-// (never decoded) and U+FFFE / U+FFFF.
-bool IsXmlChar(char32_t cp) {
-  if (cp < 0x20) return cp == U'\t' || cp == U'\n' || cp == U'\r';
-  return cp != 0xFFFE && cp != 0xFFFF && cp <= 0x10FFFF;
-}
-
-enum class XmlContext { kText, kAttribute };
-
-// Escapes markup characters and quotes; characters XML 1.0 cannot carry at all (most
-// controls, malformed UTF-8) become U+FFFD. In attributes, whitespace controls are written
-// as character references so a parser's attribute normalisation keeps them.
-std::string Escape(std::string_view s, XmlContext context) {
-  std::string out;
-  out.reserve(s.size() + s.size() / 8);
-  for (std::size_t pos = 0; pos < s.size();) {
-    const char32_t cp = NextCodePoint(s, pos);
-    switch (cp) {
-      case U'&':
-        out += "&amp;";
-        break;
-      case U'<':
-        out += "&lt;";
-        break;
-      case U'>':
-        out += "&gt;";
-        break;
-      case U'"':
-        out += "&quot;";
-        break;
-      case U'\'':
-        out += "&apos;";
-        break;
-      case U'\r':
-        out += "&#13;";
-        break;
-      case U'\n':
-        out += context == XmlContext::kAttribute ? "&#10;" : "\n";
-        break;
-      case U'\t':
-        out += context == XmlContext::kAttribute ? "&#9;" : "\t";
-        break;
-      default:
-        AppendUtf8(out, IsXmlChar(cp) ? cp : kReplacementChar);
-        break;
-    }
-  }
-  return out;
-}
+using detail::XmlContext;
+using detail::XmlEscape;
 
 std::string Attribute(std::string_view name, std::string_view value) {
-  return " " + std::string(name) + "=\"" + Escape(value, XmlContext::kAttribute) + "\"";
+  return " " + std::string(name) + "=\"" + XmlEscape(value, XmlContext::kAttribute) + "\"";
 }
 
 std::string Attribute(std::string_view name, long value) {
@@ -137,7 +85,7 @@ std::string FindingList(const RuleSummary& rule, bool warnings_only) {
   } else if (rule.truncated) {
     text += text.empty() ? "... and more" : "\n... and more";
   }
-  return Escape(text, XmlContext::kText);
+  return XmlEscape(text, XmlContext::kText);
 }
 
 std::string Testcase(const RuleSummary& rule, const std::string& classname) {

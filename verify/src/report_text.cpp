@@ -16,34 +16,14 @@
 namespace stitchsim::verify {
 namespace {
 
-using detail::AppendUtf8;
 using detail::Count;
 using detail::FormatNumber;
-using detail::kInvalidCodePoint;
-using detail::kReplacementChar;
 using detail::Location;
 using detail::NextCodePoint;
+using detail::Printable;
 
 constexpr std::size_t kTextColumns = 100;
 constexpr std::size_t kExamplesPerRule = 5;
-
-// One line of valid UTF-8 that cannot upset a terminal: whitespace controls become spaces,
-// other controls (C0, DEL, C1) and malformed bytes become U+FFFD.
-std::string Printable(std::string_view s) {
-  std::string out;
-  out.reserve(s.size());
-  for (std::size_t pos = 0; pos < s.size();) {
-    const char32_t cp = NextCodePoint(s, pos);
-    if (cp == U'\t' || cp == U'\n' || cp == U'\r' || cp == U'\v' || cp == U'\f') {
-      out += ' ';
-    } else if (cp == kInvalidCodePoint || cp < 0x20 || (cp >= 0x7F && cp < 0xA0)) {
-      AppendUtf8(out, kReplacementChar);
-    } else {
-      AppendUtf8(out, cp);
-    }
-  }
-  return out;
-}
 
 // Columns taken by valid UTF-8 text, counting one per code point (wide CJK glyphs are rare
 // enough in reports not to matter).

@@ -104,4 +104,69 @@ std::string Fmt(const char* format, double a, double b, double c) {
   return buf;
 }
 
+std::string Printable(std::string_view s) {
+  std::string out;
+  out.reserve(s.size());
+  for (std::size_t pos = 0; pos < s.size();) {
+    const char32_t cp = NextCodePoint(s, pos);
+    if (cp == U'\t' || cp == U'\n' || cp == U'\r' || cp == U'\v' || cp == U'\f') {
+      out += ' ';
+    } else if (cp == kInvalidCodePoint || cp < 0x20 || (cp >= 0x7F && cp < 0xA0)) {
+      AppendUtf8(out, kReplacementChar);
+    } else {
+      AppendUtf8(out, cp);
+    }
+  }
+  return out;
+}
+
+namespace {
+
+// XML 1.0 "Char": tab, newline, carriage return, and U+0020 and up except the surrogates
+// (never decoded) and U+FFFE / U+FFFF.
+bool IsXmlChar(char32_t cp) {
+  if (cp < 0x20) return cp == U'\t' || cp == U'\n' || cp == U'\r';
+  return cp != 0xFFFE && cp != 0xFFFF && cp <= 0x10FFFF;
+}
+
+}  // namespace
+
+std::string XmlEscape(std::string_view s, XmlContext context) {
+  std::string out;
+  out.reserve(s.size() + s.size() / 8);
+  for (std::size_t pos = 0; pos < s.size();) {
+    const char32_t cp = NextCodePoint(s, pos);
+    switch (cp) {
+      case U'&':
+        out += "&amp;";
+        break;
+      case U'<':
+        out += "&lt;";
+        break;
+      case U'>':
+        out += "&gt;";
+        break;
+      case U'"':
+        out += "&quot;";
+        break;
+      case U'\'':
+        out += "&apos;";
+        break;
+      case U'\r':
+        out += "&#13;";
+        break;
+      case U'\n':
+        out += context == XmlContext::kAttribute ? "&#10;" : "\n";
+        break;
+      case U'\t':
+        out += context == XmlContext::kAttribute ? "&#9;" : "\t";
+        break;
+      default:
+        AppendUtf8(out, IsXmlChar(cp) ? cp : kReplacementChar);
+        break;
+    }
+  }
+  return out;
+}
+
 }  // namespace stitchsim::verify::detail

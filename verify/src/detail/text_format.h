@@ -1,6 +1,6 @@
 #pragma once
-// Private text helpers shared by the report writers: UTF-8 decoding and encoding, and the
-// locale-independent number format of the text and JUnit reports.
+// Private text helpers shared by the report writers: UTF-8 decoding and encoding, terminal-safe
+// and XML-escaped text, and the locale-independent number format of the text and JUnit reports.
 
 #include <cstddef>
 #include <string>
@@ -23,6 +23,15 @@ std::string FormatNumber(double v);
 std::string Count(long n, std::string_view singular, std::string_view plural);
 /// "line L stitch S" (parts that are 0 left out).
 std::string Location(int line, long stitch);
+/// One line of valid UTF-8 that cannot upset a terminal: whitespace controls become spaces,
+/// other controls (C0, DEL, C1) and malformed bytes become U+FFFD.
+std::string Printable(std::string_view s);
+
+enum class XmlContext { kText, kAttribute };
+/// Escapes markup characters and quotes; characters XML 1.0 cannot carry at all (most
+/// controls, malformed UTF-8) become U+FFFD. In attributes, whitespace controls are written
+/// as character references so a parser's attribute normalisation keeps them.
+std::string XmlEscape(std::string_view s, XmlContext context);
 /// printf of up to three numbers into a string (the rules' messages).
 std::string Fmt(const char* format, double a, double b = 0.0, double c = 0.0);
 
