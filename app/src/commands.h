@@ -30,6 +30,8 @@ void AddRecheckCommand(CLI::App& app, int& exit_code);
 void AddExportStepCommand(CLI::App& app, int& exit_code);
 /// `sequence` (sequence_cmd.cpp): off-part course ordering of an AFP programme.
 void AddSequenceCommand(CLI::App& app, int& exit_code);
+/// `diff` (diff_cmd.cpp): two programmes verified and their reports compared.
+void AddDiffCommand(CLI::App& app, int& exit_code);
 
 /// Fingerprints of the files a run on `scene` depends on (scene, head spec, cell and head
 /// models), for a saved trace: a recheck refuses a trace whose files changed.

@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   stitchsim::app::AddRecheckCommand(app, exit_code);
   stitchsim::app::AddExportStepCommand(app, exit_code);
   stitchsim::app::AddSequenceCommand(app, exit_code);
+  stitchsim::app::AddDiffCommand(app, exit_code);
   // The subcommands run inside parse(). Bad input is a diagnostic and exit 2 there; an
   // exception reaching this far is a bug, reported as one (exit 3), never a crash or a verdict.
   try {
