@@ -269,6 +269,26 @@ TEST(ReportDiff, FindingsWithoutAnythingAreMatchedInOrder) {
   EXPECT_DOUBLE_EQ(d.findings[0].new_finding->value, 6.0);
 }
 
+TEST(ReportDiff, LineFindingsWithoutAnyPositionMatchInOrder) {
+  // No finding has a position: no line shift is known, so the line findings of a rule and
+  // subject pair in order (ten lines inserted before them change nothing) ...
+  const auto report = [](int shift, std::vector<int> lines) {
+    std::vector<Finding> f;
+    for (int l : lines) {
+      f.push_back(MakeFinding("program.sync", kError, l + shift, 0, 2.0, std::nullopt, "V"));
+    }
+    return MakeReport("p.nc", {MakeRule("program.sync", f)});
+  };
+  const ReportDiff d = DiffReports(report(0, {20, 30}), report(10, {20, 30}), {});
+  EXPECT_TRUE(d.findings.empty()) << ReportDiffToText(d);
+  ASSERT_EQ(d.rules.size(), 1u);
+  // ... and one more is listed as appeared (the last in order).
+  const ReportDiff more = DiffReports(report(0, {20, 30}), report(10, {20, 30, 40}), {});
+  ASSERT_EQ(more.findings.size(), 1u);
+  EXPECT_EQ(more.findings[0].new_finding->line, 50);
+  EXPECT_TRUE(more.new_errors);
+}
+
 TEST(ReportDiff, JsonJunitAndTextAgreeWithTheDiff) {
   const Report old = MakeReport(
       "old.nc",
