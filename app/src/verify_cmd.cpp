@@ -1,7 +1,11 @@
 // `stitchsim verify`: execute a programme on the cell, check every stitch and pose, report.
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +16,8 @@
 #include "chunked_cmd.h"
 #include "cli_common.h"
 #include "commands.h"
+#include "html_report.h"
+#include "pose_track.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/common/progress.h"
 #include "stitchsim/geom/rotation.h"
@@ -37,6 +43,7 @@ struct VerifyArgs {
   std::string report_json;
   std::string junit;
   std::string snapshots;
+  std::string html;
   std::string save_trace;
   bool no_collision = false;
   bool allow_mismatch = false;
@@ -171,10 +178,48 @@ int WriteSnapshots(const LoadedScene& ls, const sim::CellSetup& cell,
   return kExitOk;
 }
 
+// --html: the snapshots (into --snapshots' folder, or a scratch folder removed afterwards)
+// read back, then the page.
+int WriteHtml(const VerifyArgs& a, const VerifySession& vs, const verify::Report& report,
+              const verify::Verifier& verifier, PoseTrack& poses) {
+  namespace fs = std::filesystem;
+  const bool scratch = a.snapshots.empty();
+  const fs::path dir =
+      scratch ? fs::temp_directory_path() / ("stitchsim-html-" + std::to_string(::getpid()))
+              : fs::path(a.snapshots);
+  if (scratch && WriteSnapshots(vs.ls, vs.cell, verifier, dir.string()) != kExitOk) {
+    return kExitBadInput;
+  }
+  HtmlInputs in;
+  std::vector<fs::path> pngs;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    if (e.path().extension() == ".png") pngs.push_back(e.path());
+  }
+  std::sort(pngs.begin(), pngs.end(), [](const fs::path& x, const fs::path& y) {
+    const bool ox = x.filename() == "overview.png", oy = y.filename() == "overview.png";
+    return ox != oy ? ox : x.filename() < y.filename();
+  });
+  for (const fs::path& png : pngs) {
+    std::ifstream f(png, std::ios::binary);
+    in.snapshots.emplace_back(png.filename().string(),
+                              std::string(std::istreambuf_iterator<char>(f), {}));
+  }
+  if (scratch) fs::remove_all(dir, ec);
+  poses.SetMaxPoses(HtmlLimits{}.max_poses);
+  poses.Thin(PointedLines(verifier), INT_MAX);
+  in.report = &report;
+  in.verifier = &verifier;
+  in.scene = &vs.ls;
+  in.poses = &poses;
+  return WriteHtmlReport(a.html, in);
+}
+
 int RunVerify(const VerifyArgs& a) {
   if (!OutputsDistinct({{"--report", a.report_json},
                         {"--junit", a.junit},
                         {"--save-trace", a.save_trace},
+                        {"--html", a.html},
                         {"--part", a.part}})) {
     return kExitBadInput;
   }
@@ -185,7 +230,7 @@ int RunVerify(const VerifyArgs& a) {
     return kExitBadInput;
   }
   if (!a.shard.empty() && (a.dynamics || !a.save_trace.empty() || !a.report_json.empty() ||
-                           !a.junit.empty() || !a.snapshots.empty())) {
+                           !a.junit.empty() || !a.snapshots.empty() || !a.html.empty())) {
     PrintError("cli-usage",
                "--shard writes a partial result (--part) only: reports come from `stitchsim "
                "report merge`; --dynamics and --save-trace run in one process");
@@ -200,7 +245,8 @@ int RunVerify(const VerifyArgs& a) {
   run_options.allow_mismatch = a.allow_mismatch;
   run_options.dynamics = a.dynamics;
   run_options.quiet = a.quiet;
-  run_options.keep_stitch_marks = !a.snapshots.empty();
+  run_options.keep_stitch_marks = !a.snapshots.empty() || !a.html.empty();
+  run_options.record_poses = !a.html.empty();
   run_options.jobs = a.jobs;
   run_options.shard = a.shard;
   run_options.part = a.part;
@@ -212,6 +258,10 @@ int RunVerify(const VerifyArgs& a) {
   if (WriteReports(run.report, a.report_json, a.junit) != kExitOk) return kExitBadInput;
   if (!a.snapshots.empty() &&
       WriteSnapshots(run.session->ls, run.session->cell, *run.verifier, a.snapshots) != kExitOk) {
+    return kExitBadInput;
+  }
+  if (!a.html.empty() &&
+      WriteHtml(a, *run.session, run.report, *run.verifier, run.poses) != kExitOk) {
     return kExitBadInput;
   }
   return run.report.errors == 0 ? kExitOk : kExitFindings;
@@ -233,6 +283,9 @@ void AddVerifyCommand(CLI::App& app, int& exit_code) {
                   "Write the trace the rules read here, to check again with `stitchsim recheck`");
   cmd->add_option("--snapshots", args->snapshots,
                   "Write overview.png and <rule>.png close-ups into this folder");
+  cmd->add_option("--html", args->html,
+                  "Write one self-contained HTML report here: findings, snapshots, a 3D view of "
+                  "the cell posed at any line, plots of every rule along the programme");
   AddScenePathFlag(*cmd);
   cmd->add_flag("--no-collision", args->no_collision,
                 "Skip the FCL collision checks (collision.* rules)");

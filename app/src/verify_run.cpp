@@ -13,6 +13,8 @@
 #include "chunked_cmd.h"
 #include "cli_common.h"
 #include "commands.h"
+#include "html_report.h"
+#include "pose_track.h"
 #include "stitchsim/common/progress.h"
 #include "stitchsim/program/identity.h"
 #include "stitchsim/sim/dynamics.h"
@@ -128,12 +130,15 @@ int RunSerial(const VerifyRunOptions& a, VerifySession& vs, sim::ProgramInput& i
               const program::ProgramIdentity& id, BoundedDiagnosticSink& diagnostics,
               VerifyRun& out) {
   auto verifier = std::make_unique<verify::Verifier>(vs.Rules(), a.keep_stitch_marks);
+  out.poses = PoseTrack(HtmlLimits{}.max_poses);
+  PoseRecorder recorder(out.poses, verifier.get());
+  TeeSink rules(*verifier, a.record_poses ? &recorder : nullptr);
   std::unique_ptr<trace::TraceFileWriter> saved;
   if (!a.save_trace.empty()) {
     saved = OpenTrace(a, vs.ls, vs.cell, vs.description, id, vs.stitch_length_mm);
     if (!saved) return kExitBadInput;
   }
-  TeeSink tee(*verifier, saved.get());
+  TeeSink tee(rules, saved.get());
   std::optional<sim::DynamicsSink> physics;
   if (a.dynamics) physics.emplace(*vs.mj.physics, *vs.mj.physics_poses, tee);
   sim::TimingSink timing(*vs.mj.timing, *vs.ls.robot, vs.timing,
@@ -172,6 +177,7 @@ int RunChunked(const VerifyRunOptions& a, VerifySession& vs, sim::ProgramInput& 
   inv.allow_mismatch = a.allow_mismatch;
   inv.quiet = a.quiet;
   inv.stitch_marks = a.keep_stitch_marks;
+  inv.chunk_poses = a.record_poses ? 1024 : 0;
   inv.jobs = a.jobs;
   if (!a.shard.empty() && !ParseShard(a.shard, inv.shard, inv.shards)) return kExitBadInput;
   inv.part = a.part;
@@ -183,6 +189,7 @@ int RunChunked(const VerifyRunOptions& a, VerifySession& vs, sim::ProgramInput& 
   out.report = RunReport(a.program, a.scene, *vs.ls.scene, vs.stitch_length_mm, chunked.summary);
   chunked.verifier->Finish(out.report);
   out.verifier = std::move(chunked.verifier);
+  out.poses = std::move(chunked.poses);
   return kExitOk;
 }
 

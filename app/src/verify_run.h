@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "pose_track.h"
 #include "stitchsim/verify/report.h"
 #include "stitchsim/verify/verifier.h"
 #include "verify_session.h"
@@ -22,6 +23,7 @@ struct VerifyRunOptions {
   bool dynamics = false;           ///< step MuJoCo's physics (a serial run)
   bool quiet = false;              ///< no progress on stderr
   bool keep_stitch_marks = false;  ///< every stitch's verdict kept (the overview snapshot)
+  bool record_poses = false;       ///< line-end poses kept (--html's slider)
   int jobs = 0;                    ///< 0: the number of cores
   std::string shard;               ///< "I/N": this process's share into `part`; empty: all
   std::string part;                ///< --shard: the partial result file
@@ -34,6 +36,7 @@ struct VerifyRun {
   std::unique_ptr<VerifySession> session;
   std::unique_ptr<verify::Verifier> verifier;  ///< finished into `report`
   verify::Report report;
+  PoseTrack poses{0};  ///< VerifyRunOptions::record_poses: the line-end poses, in line order
 };
 
 /// Runs the programme: kExitOk with `out` filled (with a shard: the part written, `out` empty),
