@@ -218,7 +218,9 @@ TEST(ReportDiff, TruncatedRulesAreComparedByCount) {
   EXPECT_TRUE(grew.new_errors);
   EXPECT_EQ(grew.rules[0].new_errors - grew.rules[0].old_errors, 5);
   // Fewer past the cap: none.
-  EXPECT_FALSE(DiffReports(old, MakeReport("b.nc", {Truncated(0, 50)}), {}).new_errors);
+  const ReportDiff fewer = DiffReports(old, MakeReport("b.nc", {Truncated(0, 50)}), {});
+  EXPECT_FALSE(fewer.new_errors);
+  EXPECT_EQ(ReportDiffToText(fewer).rfind("CHANGED  ", 0), 0u) << ReportDiffToText(fewer);
 
   // The old report truncated, the new one clean after its fix of the first 150: the 50 left
   // match, nothing past the old cap is listed as appeared.

@@ -116,7 +116,9 @@ std::string Verdict(const std::string& v) { return v.empty() ? "unknown" : Print
 std::string ReportDiffToText(const ReportDiff& diff) {
   const DiffSide &o = diff.old_side, &n = diff.new_side;
   const bool any = diff.appeared + diff.disappeared + diff.changed > 0;
-  std::string out = diff.new_errors ? "NEW ERRORS" : any ? "CHANGED" : "SAME";
+  bool counts = false;  // a truncated rule's counts may change with no finding listed
+  for (const RuleCountDiff& r : diff.rules) counts = counts || r.CountsChanged();
+  std::string out = diff.new_errors ? "NEW ERRORS" : any || counts ? "CHANGED" : "SAME";
   out += "  " + Printable(o.program_file) + " -> " + Printable(n.program_file);
   const std::string& scene = diff.scene_name.empty() ? diff.scene_file : diff.scene_name;
   if (!scene.empty()) out += " on " + Printable(scene);
