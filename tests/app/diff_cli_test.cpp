@@ -151,8 +151,10 @@ TEST(DiffCli, AProgrammeAgainstItselfReportsNothing) {
 // pierce inside stringer_2's footprint, and the needles-down move into it crosses it), the
 // rules that judge that feed report this same stitch on this same line: stitch.length (its
 // length), needle.side_force (the needles are in the preform while a coupled raster feeds) and
-// program.sync (V advances one pitch, the tool travels 128 mm). Being the last stitch before
-// M11, no later stitch is measured from it: every new finding is on the moved line. The
+// program.sync (V advances one pitch, the tool travels 128 mm; advancing U and V with the feed
+// instead would have the executor stitch the whole feed, a stitch every pitch, and
+// program.stitch_count fire). Being the last stitch before M11, no later stitch is measured
+// from it: every new finding is on the moved line, and no other line changes. The
 // collision rules are left out (--no-collision): they would add the head standing on the
 // stringer here and on the retract that follows.
 TEST(DiffCli, OneStitchMovedOntoAStringerIsThatStitchsNewFindings) {
@@ -186,6 +188,13 @@ TEST(DiffCli, OneStitchMovedOntoAStringerIsThatStitchsNewFindings) {
     }
   }
   EXPECT_EQ(crossings, 1) << d.text;
+  // The rules the comment above names, each once.
+  const std::set<std::pair<std::string, int>> expected = {{"constraint.crossing", moved_line},
+                                                          {"needle.side_force", moved_line},
+                                                          {"program.sync", moved_line},
+                                                          {"stitch.length", moved_line}};
+  EXPECT_EQ(appeared, expected) << d.text;
+  EXPECT_EQ(d.json.at("counts").at("appeared"), 4) << d.text;
   // The second route: the original verifies clean, so the new findings are those `verify`
   // gives the copy.
   EXPECT_TRUE(VerifiedFindings(WingWindow(), " --no-collision", "orig_verify").empty());
