@@ -76,6 +76,10 @@
     return (h ? h + ':' + two(m) : m) + ':' + two(sec) + ' (' + fmt(Math.round(s)) + ' s)';
   }
 
+  function withUnit(v, unit) {
+    return typeof v === 'number' && isFinite(v) ? fmt(v) + unit : '\u2013';
+  }
+
   function list(x) { return Array.isArray(x) ? x : []; }
 
   // Index of the first element > value in an ascending typed array (binary search).
@@ -266,8 +270,7 @@
     const body = el('tbody');
     list(data.rules).forEach((r) => {
       const unit = r.unit ? ' ' + r.unit : '';
-      const worst = el('td', {text: r.worst_value === null || r.worst_value === undefined ?
-        '\u2013' : fmt(r.worst_value) + unit});
+      const worst = el('td', {text: withUnit(r.worst_value, unit)});
       if (typeof r.worst_line === 'number' && r.worst_line > 0) {
         worst.appendChild(document.createTextNode(' at '));
         worst.appendChild(el('a', {href: '#', text: 'line ' + fmt(r.worst_line),
@@ -280,10 +283,8 @@
           text: fmt(r.checked)}),
         el('td', {class: 'num' + (r.errors ? ' sev-error' : ''), text: fmt(r.errors)}),
         el('td', {class: 'num' + (r.warnings ? ' sev-warning' : ''), text: fmt(r.warnings)}),
-        worst, el('td', {class: 'num', text: r.error_limit === null ? '\u2013' :
-          fmt(r.error_limit) + unit}),
-        el('td', {class: 'num', text: r.warning_limit === null ? '\u2013' :
-          fmt(r.warning_limit) + unit}),
+        worst, el('td', {class: 'num', text: withUnit(r.error_limit, unit)}),
+        el('td', {class: 'num', text: withUnit(r.warning_limit, unit)}),
       ]);
       tr.addEventListener('click', () => {
         state.filter.rule = state.filter.rule === r.id ? '' : r.id;
@@ -345,9 +346,9 @@
       class: i === state.selectedFinding ? 'selected' : ''}, [
       el('td', {text: f.rule}), el('td', {class: 'sev-' + f.severity, text: f.severity}),
       el('td', {class: 'num', text: fmt(f.line)}), el('td', {class: 'num',
-        text: typeof f.stitch === 'number' && f.stitch >= 0 ? fmt(f.stitch) : '\u2013'}),
-      el('td', {class: 'num', text: fmt(f.value) + unit}),
-      el('td', {class: 'num', text: fmt(f.limit) + unit}),
+        text: typeof f.stitch === 'number' && f.stitch > 0 ? fmt(f.stitch) : '\u2013'}),
+      el('td', {class: 'num', text: withUnit(f.value, unit)}),
+      el('td', {class: 'num', text: withUnit(f.limit, unit)}),
       el('td', {text: f.subject || ''}), el('td', {text: f.message || ''})]);
     tr.addEventListener('click', () => goToFinding(i));
     return tr;
@@ -574,7 +575,8 @@
       points.renderOrder = 3 - v;
       points.name = 'stitches-' + v;
       part.add(points);
-      legend.push({css: c, label: VERDICT_NAMES[v] + ' (' + fmt(count) + ')', layer: 'stitches'});
+      const shown = st.total > n ? ' shown' : '';
+      legend.push({css: c, label: VERDICT_NAMES[v] + ' (' + fmt(count) + shown + ')'});
     }
     list(data.drawings).forEach((d, i) => {
       const pos = typed(d.positions, Float32Array, 'drawings[' + i + '].positions');
@@ -582,7 +584,7 @@
       const points = pointsObject(pos, new THREE.Color(c[0], c[1], c[2]), 2, disc, false);
       points.name = 'drawing-' + d.label;
       part.add(points);
-      legend.push({css: c, label: d.label, layer: 'drawings'});
+      legend.push({css: c, label: d.label});
     });
     return legend;
   }
@@ -734,7 +736,7 @@
   // "Go to this finding" in the view: marker at its point, camera turned and zoomed to it.
   function focusFinding(viewer, f) {
     const p = Array.isArray(f.position_mm) && f.position_mm.length === 3 ? f.position_mm :
-      toolPointAt(f.line);
+      (f.line > 0 ? toolPointAt(f.line) : null);
     viewer.marker.visible = !!p;
     if (!p) return;
     const attr = viewer.marker.geometry.attributes.position;
@@ -754,7 +756,9 @@
     box.appendChild(item(hex(PATH_DONE_COLOUR), 'path done', true));
     box.appendChild(item(hex(PATH_COLOUR), 'path to come', true));
     box.appendChild(item(hex(TOOL_COLOUR), 'tool point', false));
-    box.appendChild(item(hex(FINDING_COLOUR), 'selected finding', false));
+    const ring = item('transparent', 'selected finding', false);
+    ring.firstChild.style.border = '2px solid ' + hex(FINDING_COLOUR);
+    box.appendChild(ring);
   }
 
   function buildViewTools(viewer) {
@@ -987,7 +991,7 @@
     const row = document.querySelector('#finding-table tr[data-finding="' + i + '"]');
     if (row) row.classList.add('selected');
     setPlaying(false);
-    setLine(f.line);
+    if (f.line > 0) setLine(f.line);  // line 0: not tied to a line
     if (state.viewer) guard('showing the finding', () => focusFinding(state.viewer, f));
   }
 

@@ -2,11 +2,14 @@
 // Checks a stitchsim HTML report in Debian's headless Chromium (docs/report-format.md,
 // "HTML report"):
 //   node tests/browser/check_report.mjs FILE.html [--out DIR] [--expect-finding] [--timeout S]
+//                                       [--expect-shown-error]
 // Fails (exit 1, a message on stderr) on a console error or page error, a request that is not
 // file:/data:/blob:, an error shown on the page, the page not ready within the timeout (60 s),
 // a blank 3D canvas, a finding click that does not move the slider to the finding's line and
 // change the view, or a plot click that does not move the slider. Screenshots go to --out
 // (default: no files); stdout gets one JSON line {"load_s", "size_mb", "changed_fraction", ...}.
+// --expect-shown-error (malformed data): passes only if the page shows its error message
+// (and still logs no console error).
 import { chromium } from 'playwright-core';
 import fs from 'node:fs';
 import os from 'node:os';
@@ -19,11 +22,13 @@ const CHANGE_PIXEL_DIFF = 40;     // a pixel "changed" when a channel moves by m
 const CHANGE_MIN_FRACTION = 0.03; // share of changed pixels required after "go to finding"
 
 function parseArgs(argv) {
-  const args = { file: null, out: null, expectFinding: false, timeoutS: 60 };
+  const args = { file: null, out: null, expectFinding: false, expectShownError: false,
+                 timeoutS: 60 };
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i];
     if (a === '--out') args.out = argv[++i];
     else if (a === '--expect-finding') args.expectFinding = true;
+    else if (a === '--expect-shown-error') args.expectShownError = true;
     else if (a === '--timeout') args.timeoutS = Number(argv[++i]);
     else if (!args.file && !a.startsWith('--')) args.file = a;
     else throw new Error(`unknown argument ${a}`);
@@ -105,7 +110,14 @@ async function run(args, page, failures, summary) {
     ready: !!window.stitchsimReady, loadMs: window.stitchsimLoadMs,
     errors: window.stitchsimErrors || [], errorBox: !document.getElementById('error').hidden,
   }));
-  summary.load_s = Number((shown.loadMs / 1000).toFixed(3));
+  summary.load_s = shown.loadMs ? Number((shown.loadMs / 1000).toFixed(3)) : null;
+  if (args.expectShownError) {
+    const text = await page.locator('#error').innerText();
+    summary.shown_error = text;
+    if (!shown.errorBox || !text.trim()) failures.push('no error message shown on the page');
+    if (args.out) await page.screenshot({ path: path.join(args.out, 'page_error.png') });
+    return;
+  }
   if (!shown.ready || shown.errorBox) {
     failures.push(`the page shows errors: ${shown.errors.join(' | ')}`);
     return;
@@ -196,7 +208,7 @@ async function main() {
   });
   try {
     await context.route('**/*', (route) => {
-      const u = route.request().url();
+      const u = route.request().url();  // file: and data: are not routed; kept for safety
       if (/^(file|data|blob):/.test(u)) return route.continue();
       failures.push(`network request: ${u}`);
       return route.abort();
@@ -204,6 +216,9 @@ async function main() {
     const page = context.pages()[0] || await context.newPage();
     page.on('console', (m) => { if (m.type() === 'error') failures.push(`console: ${m.text()}`); });
     page.on('pageerror', (e) => failures.push(`page error: ${e.message}`));
+    page.on('request', (r) => {
+      if (!/^(file|data|blob):/.test(r.url())) failures.push(`request: ${r.url()}`);
+    });
     await run(args, page, failures, summary);
   } catch (e) {
     failures.push(e.message.split('\n')[0]);

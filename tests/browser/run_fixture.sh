@@ -20,3 +20,6 @@ fi
 mkdir -p "$out"
 python3 "$here/make_fixture.py" "$out/fixture.html" "$@" >&2
 node "$here/check_report.mjs" "$out/fixture.html" --out "$out" --expect-finding
+# Malformed data: the page must say so (no blank page, no console error).
+python3 "$here/make_fixture.py" "$out/broken.html" --broken >&2
+node "$here/check_report.mjs" "$out/broken.html" --out "$out" --expect-shown-error >&2
