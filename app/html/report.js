@@ -658,7 +658,15 @@
       },
       frame: () => { if (dirty) viewer.render(); },
     };
-    controls.addEventListener('change', viewer.requestRender);
+    controls.enableKeys = false;  // the arrow keys belong to the slider
+    controls.addEventListener('change', () => {
+      // Keep the depth range around what is looked at, close up or from afar.
+      const dist = camera.position.distanceTo(controls.target);
+      camera.near = Math.max(0.0005, dist / 500);
+      camera.far = dist * 50 + 100;
+      camera.updateProjectionMatrix();
+      viewer.requestRender();
+    });
     const resize = () => {
       const w = Math.max(1, box.clientWidth);
       const h = Math.max(1, box.clientHeight);
@@ -706,9 +714,6 @@
     const fov = THREE.MathUtils ? THREE.MathUtils.degToRad(cam.fov) : cam.fov * Math.PI / 180;
     const dist = r / Math.sin(Math.min(fov, fov * cam.aspect) / 2);
     cam.position.copy(centre).addScaledVector(dir, dist);
-    cam.near = Math.max(0.001, dist / 200);
-    cam.far = dist * 20 + 100;
-    cam.updateProjectionMatrix();
     viewer.controls.target.copy(centre);
     viewer.controls.update();
     viewer.requestRender();

@@ -91,6 +91,53 @@ function changedFraction(a, b) {
   return changed / (a.w * a.h);
 }
 
+// The report's poses read from the file itself (a second route to the joints the page shows).
+function readPoses(file) {
+  const html = fs.readFileSync(file, 'utf8');
+  const open = '<script id="stitchsim-data" type="application/json">';
+  const start = html.indexOf(open);
+  const end = html.indexOf('</script>', start);
+  if (start < 0 || end < 0) return null;
+  let data;
+  try {
+    data = JSON.parse(html.slice(start + open.length, end));
+  } catch (e) {
+    return null;
+  }
+  const bytes = (b64) => Uint8Array.from(Buffer.from(b64 || '', 'base64')).buffer;
+  const poses = data.poses || {};
+  return { lines: new Int32Array(bytes(poses.lines)), q: new Float32Array(bytes(poses.q)),
+           dof: (data.cell && data.cell.joints || []).length };
+}
+
+// jointsAt at a recorded line equals that record; between two records, the linear blend.
+async function checkPoses(args, page, failures, line) {
+  const poses = readPoses(args.file);
+  if (!poses || !poses.dof) return;
+  const row = (k) => Array.from(poses.q.subarray(k * poses.dof, (k + 1) * poses.dof));
+  const near = (a, b) => a.length === b.length && a.every((v, j) => Math.abs(v - b[j]) < 1e-5);
+  const k = poses.lines.indexOf(line);
+  if (line > 0 && k < 0) failures.push(`no recorded pose at the finding's line ${line}`);
+  const cases = [];
+  if (k >= 0) cases.push([line, row(k)]);
+  for (let i = 0; i + 1 < poses.lines.length && cases.length < 3; i++) {
+    const gap = poses.lines[i + 1] - poses.lines[i];
+    if (gap >= 2 && poses.lines[i] > 0) {
+      const a = row(i);
+      const b = row(i + 1);
+      const f = Math.floor(gap / 2) / gap;
+      cases.push([poses.lines[i] + Math.floor(gap / 2), a.map((v, j) => v + (b[j] - v) * f)]);
+    }
+  }
+  for (const [at, want] of cases) {
+    const got = await page.evaluate((l) => window.stitchsim.jointsAt(l), at);
+    if (!near(got, want)) {
+      failures.push(`jointsAt(${at}) = ${JSON.stringify(got)}, the data say ` +
+                    `${JSON.stringify(want)}`);
+    }
+  }
+}
+
 async function sliderLine(page) {
   return page.evaluate(() => ({ slider: Number(document.getElementById('slider').value),
                                 api: window.stitchsim.line }));
@@ -170,6 +217,7 @@ async function checkFinding(args, page, failures, summary, before, shot) {
                   ` % of pixels, need ${100 * CHANGE_MIN_FRACTION} %)`);
   }
   await shot('view_finding.png');
+  await checkPoses(args, page, failures, line);
 }
 
 async function checkPlot(page, failures, summary) {
