@@ -289,6 +289,7 @@
       tr.addEventListener('click', () => {
         state.filter.rule = state.filter.rule === r.id ? '' : r.id;
         $('filter-rule').value = state.filter.rule;
+        markRuleRow();
         renderFindings();
       });
       body.appendChild(tr);
@@ -299,6 +300,11 @@
       $('skipped').appendChild(el('p', {class: 'muted', text: 'Skipped: ' +
         skipped.map((s) => s.id + ' (' + s.reason + ')').join('; ')}));
     }
+  }
+
+  function markRuleRow() {
+    document.querySelectorAll('#rule-table tbody tr').forEach((tr) =>
+      tr.classList.toggle('selected', tr.getAttribute('data-rule') === state.filter.rule));
   }
 
   function buildFindingFilters() {
@@ -312,6 +318,7 @@
       el('option', {value: 'warning', text: 'warnings'})]);
     ruleSelect.addEventListener('change', () => {
       state.filter.rule = ruleSelect.value;
+      markRuleRow();
       renderFindings();
     });
     sevSelect.addEventListener('change', () => {

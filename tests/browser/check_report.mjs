@@ -186,6 +186,7 @@ async function run(args, page, failures, summary) {
   await shot('view_start.png');
   await checkFinding(args, page, failures, summary, before, shot);
   await checkPlot(page, failures, summary);
+  await checkPlay(page, failures, summary);
   const q = await page.evaluate(() => window.stitchsim.jointsAt(window.stitchsim.line));
   if (!Array.isArray(q) || !q.length || !q.every(Number.isFinite)) {
     failures.push(`stitchsim.jointsAt gave ${JSON.stringify(q)}`);
@@ -217,7 +218,24 @@ async function checkFinding(args, page, failures, summary, before, shot) {
                   ` % of pixels, need ${100 * CHANGE_MIN_FRACTION} %)`);
   }
   await shot('view_finding.png');
+  if (args.out) await page.screenshot({ path: path.join(args.out, 'page_finding.png') });
   await checkPoses(args, page, failures, line);
+}
+
+// Play moves the slider forward; pause stops it.
+async function checkPlay(page, failures, summary) {
+  const lines = await page.evaluate(() => Number(document.getElementById('slider').max));
+  if (lines < 3) return;
+  await page.evaluate(() => window.stitchsim.goTo(1));
+  await page.click('#play');
+  await page.waitForTimeout(1000);
+  await page.click('#play');
+  const stopped = (await sliderLine(page)).slider;
+  await page.waitForTimeout(300);
+  const later = (await sliderLine(page)).slider;
+  summary.play_lines = [stopped, later];
+  if (stopped <= 1) failures.push('Play did not move the slider in 1 s');
+  if (later !== stopped) failures.push(`the slider moved after Pause (${stopped} -> ${later})`);
 }
 
 async function checkPlot(page, failures, summary) {
