@@ -483,7 +483,7 @@
       case 'capsule': return capsuleGeometry(s[0], s[1]);
       case 'cylinder':
         return new THREE.CylinderBufferGeometry(s[0], s[0], 2 * s[1], 24).rotateX(Math.PI / 2);
-      case 'plane': return new THREE.PlaneBufferGeometry(2 * (s[0] || 5), 2 * (s[1] || 5));
+      case 'plane': return new THREE.PlaneBufferGeometry(2 * (s[0] || 15), 2 * (s[1] || 15));
       case 'mesh':
         if (!meshGeometries[g.mesh]) throw new Error('geom ' + g.name + ': no mesh ' + g.mesh);
         return meshGeometries[g.mesh];
@@ -527,6 +527,7 @@
         if (rgba.length === 4 && rgba[3] <= 0) return;
         const mesh = new THREE.Mesh(geomGeometry(g, meshGeometries), material(g.rgba, materials));
         mesh.name = g.name || '';
+        mesh.userData.plane = g.type === 'plane';  // left out of camera fits
         mesh.position.copy(vec3(g.pos || [0, 0, 0]));
         mesh.quaternion.copy(quat(g.quat || [1, 0, 0, 0]));
         group.add(mesh);
@@ -706,7 +707,10 @@
     state.viewer.scene.updateMatrixWorld(true);
     const box = new THREE.Box3();
     object.traverse((o) => {
-      if (!o.visible || !o.geometry || o === state.viewer.tool || o === state.viewer.marker) return;
+      if (!o.visible || !o.geometry || o.userData.plane || o === state.viewer.tool ||
+          o === state.viewer.marker) {
+        return;
+      }
       if (!o.geometry.boundingBox) o.geometry.computeBoundingBox();
       const b = o.geometry.boundingBox.clone();
       if (!b.isEmpty()) box.union(b.applyMatrix4(o.matrixWorld));
