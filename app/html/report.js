@@ -630,7 +630,9 @@
     const camera = new THREE.PerspectiveCamera(40, 1, 0.005, 500);
     camera.up.set(0, 0, 1);  // MuJoCo: z up
     scene.add(camera);
-    scene.add(new THREE.HemisphereLight(0xffffff, 0x7d838c, 0.65));
+    const sky = new THREE.HemisphereLight(0xffffff, 0x7d838c, 0.65);
+    sky.position.set(0, 0, 1);  // sky above in z, not three.js's default y
+    scene.add(sky);
     const light = new THREE.DirectionalLight(0xffffff, 0.65);
     light.position.set(0.5, 1, 1.5);
     camera.add(light);
