@@ -263,10 +263,9 @@
 
   function buildRules(data) {
     const table = $('rule-table');
-    const head = ['Rule', 'Checked', 'Errors', 'Warnings', 'Worst', 'Error limit',
-      'Warning limit'];
+    const head = ['Rule', 'Checked', 'Errors', 'Warnings', 'Worst', 'Limits'];
     table.appendChild(el('thead', {}, [el('tr', {}, head.map((h, i) =>
-      el('th', {class: i > 0 && i !== 4 ? 'num' : '', text: h})))]));
+      el('th', {class: i > 0 && i < 4 ? 'num' : '', text: h})))]));
     const body = el('tbody');
     list(data.rules).forEach((r) => {
       const unit = r.unit ? ' ' + r.unit : '';
@@ -283,8 +282,9 @@
           text: fmt(r.checked)}),
         el('td', {class: 'num' + (r.errors ? ' sev-error' : ''), text: fmt(r.errors)}),
         el('td', {class: 'num' + (r.warnings ? ' sev-warning' : ''), text: fmt(r.warnings)}),
-        worst, el('td', {class: 'num', text: withUnit(r.error_limit, unit)}),
-        el('td', {class: 'num', text: withUnit(r.warning_limit, unit)}),
+        worst, el('td', {}, [el('span', {class: 'sev-error', text: 'E'}), ' ' +
+          withUnit(r.error_limit, unit), el('br'), el('span', {class: 'sev-warning', text: 'W'}),
+          ' ' + withUnit(r.warning_limit, unit)]),
       ]);
       tr.addEventListener('click', () => {
         state.filter.rule = state.filter.rule === r.id ? '' : r.id;
@@ -441,6 +441,24 @@
     return points;
   }
 
+  // A faint copy drawn through everything (x-ray), as a child sharing the geometry: stitches
+  // and paths inside or under a part's surface (a preform over the stitch plane) stay visible,
+  // dimmed where something hides them; hiding the object hides its copy.
+  function addXray(object, opacity) {
+    const material = object.material.clone();
+    material.transparent = true;
+    material.opacity = opacity;
+    material.depthTest = false;
+    material.depthWrite = false;
+    if (material.alphaTest) material.alphaTest = 0.05;
+    const copy = object.isPoints ? new THREE.Points(object.geometry, material) :
+      new THREE.Line(object.geometry, material);
+    copy.frustumCulled = false;
+    copy.renderOrder = 5;
+    object.add(copy);
+    return object;
+  }
+
   // A capsule of radius r and half-length h along z (MuJoCo), as a lathe about y turned to z.
   function capsuleGeometry(r, h) {
     const profile = [];
@@ -498,6 +516,9 @@
       cache[key] = new THREE.MeshPhongMaterial({
         color: new THREE.Color(c[0], c[1], c[2]), shininess: 25, side: THREE.DoubleSide,
         transparent: c[3] < 1, opacity: c[3], depthWrite: c[3] >= 1,
+        // Surfaces pushed back in depth: stitches, paths and drawings lie on them (a part's
+        // surface holds its stitches at depth 0) and must win the depth test.
+        polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 4,
       });
     }
     return cache[key];
@@ -582,7 +603,7 @@
         disc, false);
       points.renderOrder = 3 - v;
       points.name = 'stitches-' + v;
-      part.add(points);
+      part.add(addXray(points, 0.4));
       const shown = st.total > n ? ' shown' : '';
       legend.push({css: c, label: VERDICT_NAMES[v] + ' (' + fmt(count) + shown + ')'});
     }
@@ -591,7 +612,7 @@
       const c = list(d.rgba).length === 4 ? d.rgba : [0.2, 0.4, 0.9, 1];
       const points = pointsObject(pos, new THREE.Color(c[0], c[1], c[2]), 2, disc, false);
       points.name = 'drawing-' + d.label;
-      part.add(points);
+      part.add(addXray(points, 0.3));
       legend.push({css: c, label: d.label});
     });
     return legend;
@@ -608,8 +629,8 @@
     const done = new THREE.Line(doneGeometry, new THREE.LineBasicMaterial({
       color: PATH_DONE_COLOUR}));
     full.frustumCulled = done.frustumCulled = false;
-    part.add(full);
-    part.add(done);
+    part.add(addXray(full, 0.25));
+    part.add(addXray(done, 0.5));
     return {full: full, done: done};
   }
 
@@ -738,7 +759,9 @@
     if (box.isEmpty()) box = worldBox(viewer.world);
     const sphere = box.getBoundingSphere(new THREE.Sphere());
     viewer.partRadius = Math.max(sphere.radius, 0.05);
-    frameSphere(viewer, sphere.center, viewer.partRadius * 1.6, new THREE.Vector3(0.55, -1, 0.8));
+    // The part and some room around it, so the head and the arm near it show.
+    frameSphere(viewer, sphere.center, viewer.partRadius * 1.3 + 0.6,
+      new THREE.Vector3(0.55, -1, 0.8));
   }
 
   function fitCell(viewer) {
@@ -760,7 +783,7 @@
     const attr = viewer.marker.geometry.attributes.position;
     attr.setXYZ(0, p[0], p[1], p[2]);
     attr.needsUpdate = true;
-    const r = Math.min(Math.max(viewer.partRadius * 0.35, 0.25), 2.0);
+    const r = Math.min(Math.max(viewer.partRadius * 0.35, 0.35), 2.0);
     frameSphere(viewer, partPointWorld(viewer, p), r, null);
   }
 
@@ -1100,10 +1123,12 @@
     state.viewer = guard('the 3D view', () => createViewer(data));
     guard('the plots', () => buildPlots(data));
     window.addEventListener('resize', () => state.plots.forEach(drawPlot));
-    setLine(1);
+    // Start where the work starts: the first recorded pose (line 1 is often still at home).
+    const start = state.poses.lines.length ? Math.max(1, state.poses.lines[0]) : 1;
+    setLine(start);
     if (state.viewer) {
       guard('the 3D view', () => {
-        poseCell(state.viewer.bodies, poseAt(1).q);
+        poseCell(state.viewer.bodies, poseAt(start).q);
         fitPart(state.viewer);
         buildLegend(state.viewer);
         buildViewTools(state.viewer);
