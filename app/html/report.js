@@ -80,6 +80,9 @@
     return typeof v === 'number' && isFinite(v) ? fmt(v) + unit : '\u2013';
   }
 
+  // A rule id that may wrap after its dots and underscores (zero-width spaces, display only).
+  function breakable(id) { return String(id || '').replace(/([._])/g, '$1\u200b'); }
+
   function list(x) { return Array.isArray(x) ? x : []; }
 
   // Index of the first element > value in an ascending typed array (binary search).
@@ -278,7 +281,7 @@
       const cls = r.errors > 0 ? 'has-error' : (r.warnings > 0 ? 'has-warning' : '');
       const tr = el('tr', {class: cls, 'data-rule': r.id, title: (r.description || '') +
         (r.truncated ? ' (finding list truncated)' : '') + ' \u2013 click: show its findings'}, [
-        el('td', {text: r.id + (r.truncated ? ' *' : '')}), el('td', {class: 'num',
+        el('td', {text: breakable(r.id) + (r.truncated ? ' *' : '')}), el('td', {class: 'num',
           text: fmt(r.checked)}),
         el('td', {class: 'num' + (r.errors ? ' sev-error' : ''), text: fmt(r.errors)}),
         el('td', {class: 'num' + (r.warnings ? ' sev-warning' : ''), text: fmt(r.warnings)}),
@@ -351,7 +354,8 @@
     const unit = f.unit ? ' ' + f.unit : '';
     const tr = el('tr', {'data-line': String(f.line), 'data-finding': String(i),
       class: i === state.selectedFinding ? 'selected' : ''}, [
-      el('td', {text: f.rule}), el('td', {class: 'sev-' + f.severity, text: f.severity}),
+      el('td', {text: breakable(f.rule)}),
+      el('td', {class: 'sev-' + f.severity, text: f.severity}),
       el('td', {class: 'num', text: fmt(f.line)}), el('td', {class: 'num',
         text: typeof f.stitch === 'number' && f.stitch > 0 ? fmt(f.stitch) : '\u2013'}),
       el('td', {class: 'num', text: withUnit(f.value, unit)}),
@@ -953,7 +957,8 @@
       if (!(plot.min[k] <= plot.max[k])) continue;  // NaN: nothing checked in this bucket
       const l0 = plot.first + k * plot.bucket;
       const c0 = Math.floor(plotX(plot, l0) - a.x0);
-      const c1 = Math.max(c0, Math.ceil(plotX(plot, l0 + plot.bucket - 1) - a.x0));
+      // The bucket's lines span x(l0) up to x(l0 + bucket), the next bucket's start.
+      const c1 = Math.max(c0, Math.ceil(plotX(plot, l0 + plot.bucket) - a.x0) - 1);
       for (let c = Math.max(0, c0); c <= Math.min(cols - 1, c1); c++) {
         if (plot.min[k] < cmin[c]) cmin[c] = plot.min[k];
         if (plot.max[k] > cmax[c]) cmax[c] = plot.max[k];
