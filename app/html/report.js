@@ -843,6 +843,13 @@
     return (norm < 1.5 ? 1 : norm < 3 ? 2 : norm < 7 ? 5 : 10) * mag;
   }
 
+  // A tick value with as many decimals as the tick step needs (1,657,970.5, not 1,657,971).
+  function tickLabel(v, step) {
+    const decimals = Math.min(12, Math.max(0, -Math.floor(Math.log10(step) + 1e-9)));
+    return v.toLocaleString('en-US', {minimumFractionDigits: decimals,
+      maximumFractionDigits: decimals});
+  }
+
   function buildPlot(s, index) {
     const min = typed(s.min, Float32Array, 'series[' + index + '].min');
     const max = typed(s.max, Float32Array, 'series[' + index + '].max');
@@ -920,7 +927,7 @@
       g.moveTo(a.x0, Math.round(y(v)) + 0.5);
       g.lineTo(a.x1, Math.round(y(v)) + 0.5);
       g.stroke();
-      g.fillText(fmt(Math.abs(v) < step * 1e-6 ? 0 : v), a.x0 - 4, y(v));
+      g.fillText(tickLabel(Math.abs(v) < step * 1e-6 ? 0 : v, step), a.x0 - 4, y(v));
     }
     g.textAlign = 'left';
     g.textBaseline = 'top';
