@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Plans a bundled scene, verifies it with --html and checks the page in headless Chromium:
+#   tests/browser/run_report.sh STITCHSIM SCENE "PLAN ARGS" [OUT_DIR]
+# e.g. run_report.sh build/app/stitchsim scenes/circle_8in.yaml "stitch --mode coupled".
+# A programme with findings must also pass the "go to this finding" check. OUT_DIR keeps the
+# programme, the page and the screenshots (default: a scratch folder, removed).
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+bin="$1" scene="$2" plan="$3" out="${4:-}"
+if [[ -z "$out" ]]; then
+  out="$(mktemp -d "/tmp/stitchsim-report-$$-XXXX")"
+  trap 'rm -rf "$out"' EXIT
+fi
+mkdir -p "$out"
+# shellcheck disable=SC2086  # PLAN ARGS are words
+"$bin" plan $plan --scene "$scene" --quiet -o "$out/prog.nc" >/dev/null
+rc=0
+"$bin" verify "$out/prog.nc" --scene "$scene" --quiet --html "$out/report.html" \
+  --report "$out/report.json" >/dev/null || rc=$?
+if ((rc > 1)); then
+  echo "run_report: verify exit $rc" >&2
+  exit 1
+fi
+expect=()
+((rc == 1)) && expect=(--expect-finding)
+node "$here/check_report.mjs" "$out/report.html" --out "$out" "${expect[@]}"
