@@ -828,7 +828,7 @@
       viewer.world.traverse((o) => { if (o.isMesh) meshes.push(o); });
       return meshes;
     });
-    toggle('stitches', byName('stitches-'));
+    if (byName('stitches-')().length) toggle('stitches', byName('stitches-'));
     toggle('path', () => [viewer.path.full, viewer.path.done]);
     if (list(state.data.drawings).length) toggle('drawings', byName('drawing-'));
   }
@@ -1027,8 +1027,10 @@
     const pose = poseAt(l);
     const stitch = stitchAt(l);
     const readout = $('readout');
-    readout.textContent = 'line ' + fmt(l) + ' / ' + fmt(state.lines) + ' \u00b7 stitch ' +
-      stitch.text + ' / ' + fmt(stitch.total) + ' \u00b7 t ' + fmtTime(pose.t) + ' \u00b7 ';
+    const stitchText = stitch.total > 0 ? ' \u00b7 stitch ' + stitch.text + ' / ' +
+      fmt(stitch.total) : '';  // none in fibre placement
+    readout.textContent = 'line ' + fmt(l) + ' / ' + fmt(state.lines) + stitchText + ' \u00b7 t ' +
+      fmtTime(pose.t) + ' \u00b7 ';
     readout.appendChild(el('span', {class: pose.exact ? '' : 'interp',
       text: pose.exact ? 'recorded pose' : 'interpolated'}));
     if (state.viewer) guard('posing the robot', () => setViewerLine(state.viewer, l, pose.q));
