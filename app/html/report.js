@@ -441,7 +441,10 @@
       sizeAttenuation: false, map: texture, alphaTest: 0.5, depthTest: !onTop});
     const points = new THREE.Points(geometry, material);
     points.frustumCulled = false;
-    if (onTop) points.renderOrder = 10;
+    if (onTop) {
+      material.transparent = true;  // drawn in the last pass, after the x-ray copies
+      points.renderOrder = 10;
+    }
     return points;
   }
 
