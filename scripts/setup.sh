@@ -12,6 +12,7 @@ PACKAGES=(
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libocct-data-exchange-dev libtbb-dev  # OpenCASCADE (CAD surfaces); its CMake targets need TBB
   clang libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer and clang's sanitizer runtimes
+  chromium libjs-three  # verify --html: three.js inlined; tests/browser: headless Chromium
 )
 
 missing=()
@@ -24,6 +25,17 @@ if ((${#missing[@]})); then
   [[ $(id -u) -eq 0 ]] || SUDO="sudo"
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# tests/browser (the HTML report in headless Chromium): Node from Debian, playwright-core pinned.
+if ! command -v node >/dev/null; then
+  SUDO=""
+  [[ $(id -u) -eq 0 ]] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends nodejs npm
+fi
+if [[ ! -d tests/browser/node_modules ]]; then
+  npm ci --prefix tests/browser --silent --no-audit --no-fund
 fi
 
 BUILD_TYPE=${STITCHSIM_BUILD_TYPE:-Release}
