@@ -573,7 +573,7 @@
       b.group.matrix.copy(b.base);
       const j = b.joint;
       if (j && typeof j.index === 'number' && j.index < q.length) {
-        const v = q[j.index];
+        const v = q[j.index] - (j.ref || 0);  // MuJoCo turns a joint by q - qpos0
         const axis = vec3(j.axis || [0, 0, 1]).normalize();
         if (j.type === 'slide') {
           m.makeTranslation(axis.x * v, axis.y * v, axis.z * v);

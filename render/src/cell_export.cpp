@@ -143,7 +143,7 @@ json ExportCell(const mjModel& m, const CellExportOptions& o, std::string& error
     meshes.push_back(json{{"vertices", Base64Of(t.vertices)}, {"faces", Base64Of(t.faces)}});
   }
   json bodies = json::array();
-  for (int b = 1; b < m.nbody; ++b) {  // body 0 is the world
+  for (int b = 0; b < m.nbody; ++b) {  // body 0 is the world (the floor's plane)
     json geoms = json::array();
     for (int g = m.body_geomadr[b]; g >= 0 && g < m.body_geomadr[b] + m.body_geomnum[b]; ++g) {
       const char* type = GeomType(m.geom_type[g]);
@@ -158,7 +158,7 @@ json ExportCell(const mjModel& m, const CellExportOptions& o, std::string& error
                {"mesh", m.geom_type[g] == mjGEOM_MESH ? json(m.geom_dataid[g]) : json(nullptr)}});
     }
     bodies.push_back(json{{"name", Name(m, mjOBJ_BODY, b)},
-                          {"parent", m.body_parentid[b] - 1},
+                          {"parent", b == 0 ? -1 : m.body_parentid[b]},
                           {"pos", Vec(m.body_pos + 3 * b, 3)},
                           {"quat", Vec(m.body_quat + 4 * b, 4)},
                           {"joint", Joint(m, b, o)},
@@ -173,7 +173,7 @@ json ExportCell(const mjModel& m, const CellExportOptions& o, std::string& error
               {"home", std::move(home)},
               {"bodies", std::move(bodies)},
               {"meshes", std::move(meshes)},
-              {"part_body", mj_name2id(&m, mjOBJ_BODY, "part") - 1}};
+              {"part_body", mj_name2id(&m, mjOBJ_BODY, "part")}};
 }
 
 }  // namespace stitchsim::render

@@ -44,7 +44,8 @@ TEST(CellExportTest, PagePosingEqualsMujocoKinematicsForEveryGeom) {
   std::string error;
   const json cell = ExportCell(*model, o, error);
   ASSERT_FALSE(cell.is_null()) << error;
-  ASSERT_EQ(cell["bodies"].size(), static_cast<std::size_t>(model->nbody - 1));
+  ASSERT_EQ(cell["bodies"].size(), static_cast<std::size_t>(model->nbody));
+  EXPECT_EQ(cell["bodies"][0]["parent"], -1);  // the world, with the floor
   MjDataPtr data(mj_makeData(model.get()));
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> angle(-1.5, 1.5);
@@ -88,7 +89,7 @@ TEST(CellExportTest, PagePosingEqualsMujocoKinematicsForEveryGeom) {
       ++geoms_checked;
     }
     // The body's own frame too.
-    const int bid = static_cast<int>(b) + 1;
+    const int bid = static_cast<int>(b);
     const Eigen::Vector3d mj(data->xpos[3 * bid], data->xpos[3 * bid + 1], data->xpos[3 * bid + 2]);
     EXPECT_LT((t.translation() - mj).norm(), 1e-9) << body["name"];
   }

@@ -1,7 +1,7 @@
 #pragma once
 // The compiled MuJoCo model of a scene as data a browser can draw and pose (the HTML report's
-// `cell`, docs/report-format.md "HTML report"): the body tree with each body's offset from its
-// parent, its joint and its visible geoms, and the meshes (thinned by vertex clustering to a
+// `cell`, docs/report-format.md "HTML report"): the body tree (MuJoCo's order, body 0 the
+// world with the floor) with each body's offset from its parent, its joint and its visible geoms, and the meshes (thinned by vertex clustering to a
 // face budget). Posing is the browser's forward kinematics: MuJoCo's body frames, a hinge
 // turning about its axis through its anchor, a slide moving along its axis.
 
