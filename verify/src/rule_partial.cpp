@@ -185,6 +185,7 @@ bool Rule::LoadPartial(const json& j, std::string& error) {
   recent_lines_ = std::move(recent);
   saw_input_ = saw_input;
   worst_sample_.reset();
+  worst_entry_tool_.reset();
   return true;
 }
 
