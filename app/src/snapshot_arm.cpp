@@ -118,7 +118,7 @@ bool PlanConstraint(const SnapshotContext& ctx, const verify::Rule& rule,
   plan.subjects.push_back({"constraint:" + f->subject, geoms, {}});
   plan.legend.push_back({render::ToRgb(kHighlight), "constraint " + f->subject});
   if (!marks.empty()) {
-    plan.overlays.push_back(MakeOverlay("crossing", kDrift, 0.006, marks, false));
+    plan.overlays.push_back(MakeOverlay("crossing", kDrift, 0.008, marks, false));
     plan.subjects.push_back({"crossing stitches", {}, {"crossing"}});
     plan.legend.push_back({render::ToRgb(kDrift), "stitch crossing the constraint"});
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "commands.h"
 #include "stitchsim/render/scene_model.h"
@@ -33,6 +34,37 @@ Eigen::Vector3d NearestCentre(const mjData& d, const std::vector<int>& geoms,
     }
   }
   return best;
+}
+
+// Viewing directions along the surface at `point_m` (world; `normal` its normal there), the
+// straightest way first (how far the surface leaves its tangent plane 50 mm away), both ways,
+// level and from a little above; from the normal's side.
+std::vector<Eigen::Vector3d> StraightestTangents(const geom::Surface& surface,
+                                                 const Eigen::Isometry3d& part,
+                                                 const Eigen::Vector3d& point_m,
+                                                 const Eigen::Vector3d& normal) {
+  const Eigen::Vector3d t1 = normal.unitOrthogonal(), t2 = normal.cross(t1);
+  std::vector<std::pair<double, Eigen::Vector3d>> ways;
+  for (int k = 0; k < 4; ++k) {  // a half turn: each line both ways below
+    const double a = kPi * k / 4;
+    const Eigen::Vector3d t = std::cos(a) * t1 + std::sin(a) * t2;
+    double bend = 0.0;
+    for (double s : {-0.05, 0.05}) {
+      const Eigen::Vector3d q = part.inverse() * (point_m + s * t) * 1000.0;
+      bend += std::abs((part * (surface.Project(q).point / 1000.0) - point_m).dot(normal));
+    }
+    ways.emplace_back(bend, t);
+  }
+  std::sort(ways.begin(), ways.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<Eigen::Vector3d> out;
+  for (const auto& [bend, t] : ways) {
+    for (double tilt : {0.15, 0.5}) {
+      out.push_back(t - tilt * normal);
+      out.push_back(-t - tilt * normal);
+    }
+  }
+  return out;
 }
 
 // Joints for the picture: the sample's, else a solved pose at its tool point.
@@ -76,10 +108,24 @@ bool PlanCollision(const SnapshotContext& ctx, const verify::Rule& rule,
   plan.centre_m = point;
   // The smaller body whole with room around it (the other one is often a rail or a mold).
   plan.radius_m =
-      std::clamp(1.6 * std::min(Reach(m, d, ga, point), Reach(m, d, gb, point)), 0.35, 1.2);
-  plan.directions = Ring(8, {-30.0, -60.0, 5.0});
-  Recolour(plan, ga, kBodyA);
-  Recolour(plan, gb, kBodyB);
+      std::clamp(1.6 * std::min(Reach(m, d, ga, point), Reach(m, d, gb, point)), 0.15, 1.0);
+  // The head in the part: the part's normal there. Looked at first along the surface where it
+  // runs straightest (a cylinder's axis: the mold's section shows), from the head's side.
+  std::optional<Eigen::Vector3d> normal;
+  if (contact && contact->kind == trace::ContactClass::kHeadPart) {
+    const Eigen::Isometry3d part = PartWorld(m, d);
+    normal =
+        part.linear() * ctx.ls->scene->surface->Project(part.inverse() * point * 1000.0).normal;
+    plan.directions = StraightestTangents(*ctx.ls->scene->surface, part, point, *normal);
+  }
+  for (const Eigen::Vector3d& dir : Ring(8, {-30.0, -60.0, 5.0})) plan.directions.push_back(dir);
+  if (normal) {  // the head opaque, the part (large) more see-through
+    Recolour(plan, ga, {kBodyA[0], kBodyA[1], kBodyA[2], 1.0f});
+    Recolour(plan, gb, {kBodyB[0], kBodyB[1], kBodyB[2], 0.35f});
+  } else {
+    Recolour(plan, ga, kBodyA);
+    Recolour(plan, gb, kBodyB);
+  }
   plan.subjects.push_back({a, ga, {}});
   plan.subjects.push_back({b, gb, {}});
   plan.legend.push_back({render::ToRgb(kBodyA), a});
@@ -90,13 +136,8 @@ bool PlanCollision(const SnapshotContext& ctx, const verify::Rule& rule,
   if (contact && contact->depth_m > 0.0) {
     // The depth as a bar out of the contact point: along the part's normal for the head in
     // the part, else towards the first body's nearest geom (the one that moved in).
-    Eigen::Vector3d dir = (NearestCentre(d, ga, point) - point).normalized();
-    if (contact->kind == trace::ContactClass::kHeadPart) {
-      const Eigen::Isometry3d part = PartWorld(m, d);
-      const geom::SurfaceProjection f =
-          ctx.ls->scene->surface->Project(part.inverse() * point * 1000.0);
-      dir = part.linear() * f.normal;
-    }
+    const Eigen::Vector3d dir =
+        normal ? *normal : (NearestCentre(d, ga, point) - point).normalized();
     render::Overlay bar =
         MakeOverlay("depth", kDepth, marker * 0.5, {point, point + contact->depth_m * dir}, true);
     bar.arrow_head = true;
@@ -136,52 +177,66 @@ std::vector<int> HeadGeomsNamed(const mjModel& m, const std::string& part_of_nam
 
 // The preform as a section across the stitch line: its top and the mold surface under it.
 void AddSection(const SnapshotContext& ctx, const Eigen::Isometry3d& tool_mm,
-                const Eigen::Isometry3d& part_world, double half_width_mm, CloseUpPlan& plan) {
+                const Eigen::Vector3d& across, const Eigen::Isometry3d& part_world,
+                double half_width_mm, CloseUpPlan& plan) {
   const scene::Scene& scene = *ctx.ls->scene;
   std::vector<Eigen::Vector3d> top, bottom;
   for (int k = -12; k <= 12; ++k) {
-    const Eigen::Vector3d q =
-        tool_mm.translation() + (half_width_mm * k / 12.0) * tool_mm.linear().col(0);
+    const Eigen::Vector3d q = tool_mm.translation() + (half_width_mm * k / 12.0) * across;
     const geom::SurfaceProjection f = scene.surface->Project(q);
     bottom.push_back(part_world * (f.point / 1000.0));
     top.push_back(part_world * ((f.point + scene.preform_thickness_mm * f.normal) / 1000.0));
   }
   plan.overlays.push_back(MakeOverlay("preform_top", kPreformTop, 0.0008, top, true));
   plan.overlays.push_back(MakeOverlay("mold_surface", kMoldLine, 0.0008, bottom, true));
-  plan.legend.push_back({render::ToRgb(kPreformTop), "preform top (section across the stitch)"});
+  plan.legend.push_back({render::ToRgb(kPreformTop), "preform top (section)"});
   plan.legend.push_back({render::ToRgb(kMoldLine), "mold surface (preform underside)"});
 }
 
-// Arrows from where each needle's shaft went in (top and bottom of the preform) to where it
-// is at the worst sample, magnified.
-void AddDrift(const SnapshotContext& ctx, const Eigen::Isometry3d& entry_world,
-              const Eigen::Isometry3d& now_world, CloseUpPlan& plan) {
-  const double t_mm = ctx.process->preform_thickness_mm;
-  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> moves;
+// Arrows from where each needle's shaft points went in to where they are at the worst sample
+// after the walk (the side-force proxy's drift, process/stitch_cycle.h), magnified; part
+// frame mm in, world out.
+Eigen::Vector3d AddDrift(const SnapshotContext& ctx, const Eigen::Isometry3d& entry_mm,
+                         const Eigen::Isometry3d& now_mm, const Eigen::Isometry3d& part_world,
+                         CloseUpPlan& plan) {
+  // The walk moves the needles along head y, cancelling the tool point's travel along it.
+  const Eigen::Vector3d walk(
+      0.0, -now_mm.linear().col(1).dot(now_mm.translation() - entry_mm.translation()), 0.0);
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> moves;  // part frame, mm
   double largest_mm = 0.0;
+  Eigen::Vector3d largest = Eigen::Vector3d::Zero();
   for (const scene::NeedleSpec& n : ctx.process->needles) {
     if (std::abs(n.direction.z()) < 1e-6) continue;
-    for (double h : {0.9 * t_mm, 0.1 * t_mm}) {
-      const Eigen::Vector3d local =
-          (n.through_mm + (h - n.through_mm.z()) / n.direction.z() * n.direction) / 1000.0;
-      moves.emplace_back(entry_world * local, now_world * local);
-      largest_mm = std::max(largest_mm, (moves.back().second - moves.back().first).norm() * 1e3);
+    const Eigen::Vector3d axis = now_mm.linear() * n.direction;
+    for (double z : ctx.process->shaft_heights_mm) {
+      const Eigen::Vector3d shaft =
+          n.through_mm + (z - n.through_mm.z()) / n.direction.z() * n.direction;
+      const Eigen::Vector3d from = entry_mm * shaft;
+      Eigen::Vector3d drift = now_mm * (shaft + walk) - from;
+      drift -= drift.dot(axis) * axis;  // along the needle is the stitch itself
+      moves.emplace_back(from, drift);
+      if (drift.norm() > largest_mm) {
+        largest_mm = drift.norm();
+        largest = drift;
+      }
     }
   }
-  const double k = Magnification(largest_mm, 25.0);
-  for (const auto& [from, to] : moves) {
-    render::Overlay arrow =
-        MakeOverlay("drift", kDrift, 0.0007, {from, from + k * (to - from)}, true);
+  const double k = Magnification(largest_mm, 20.0);
+  for (const auto& [from, drift] : moves) {
+    const Eigen::Vector3d a = part_world * (from / 1000.0);
+    const Eigen::Vector3d b = part_world * ((from + k * drift) / 1000.0);
+    render::Overlay arrow = MakeOverlay("drift", kDrift, 0.0006, {a, b}, true);
     arrow.arrow_head = true;
-    if ((to - from).norm() * k < 1e-4) arrow = MakeOverlay("drift", kDrift, 0.0012, {from}, false);
+    if ((b - a).norm() < 1e-4) arrow = MakeOverlay("drift", kDrift, 0.0008, {a}, false);
     plan.overlays.push_back(std::move(arrow));
   }
-  plan.legend.push_back({render::ToRgb(kDrift), "needle shaft drift since entry x" +
-                                                    Fmt("%.0f", k) + " (largest " +
-                                                    Fmt("%.3f", largest_mm) + " mm)"});
+  plan.legend.push_back({render::ToRgb(kDrift), "needle drift after the walk, x" + Fmt("%.0f", k) +
+                                                    " (largest " + Fmt("%.3f", largest_mm) +
+                                                    " mm)"});
+  return largest;
 }
 
-// Needle and stitch rules: the needles and the presser foot, looking along the stitch line.
+// Needle and stitch rules: the needles and the presser foot, the preform as a section.
 bool PlanNeedles(const SnapshotContext& ctx, const verify::Rule& rule, const trace::TraceSample& s,
                  CloseUpPlan& plan) {
   const mjModel& m = *ctx.model;
@@ -195,9 +250,20 @@ bool PlanNeedles(const SnapshotContext& ctx, const verify::Rule& rule, const tra
   }
   const std::vector<int> foot = HeadGeomsNamed(m, "presser_foot");
   if (needles.empty()) return false;
-  plan.centre_m = now * Eigen::Vector3d(0, 0, ctx.ls->scene->preform_thickness_mm / 1000.0);
-  plan.radius_m = 0.07;
-  const Eigen::Vector3d x = now.linear().col(0), y = now.linear().col(1), z = now.linear().col(2);
+  // The needles from the mold surface up into the head, the presser foot across.
+  plan.centre_m =
+      now * Eigen::Vector3d(0, 0, (0.5 * ctx.ls->scene->preform_thickness_mm + 10.0) / 1000.0);
+  plan.radius_m = 0.05;
+  // Drift arrows seen side on: looking across the largest drift (with no drift, along the
+  // stitch line), the section drawn along it.
+  Eigen::Vector3d across = s.tool_part.linear().col(0);  // part frame
+  if (rule.WorstEntryTool()) {
+    const Eigen::Vector3d d = AddDrift(ctx, *rule.WorstEntryTool(), s.tool_part, part, plan);
+    const Eigen::Vector3d z_part = s.tool_part.linear().col(2);
+    if ((d - d.dot(z_part) * z_part).norm() > 1e-6)
+      across = (d - d.dot(z_part) * z_part).normalized();
+  }
+  const Eigen::Vector3d z = now.linear().col(2), x = part.linear() * across, y = z.cross(x);
   for (double side : {1.0, -1.0}) {
     for (double tilt : {12.0, 30.0}) {
       for (double yaw : {0.0, 25.0}) {
@@ -217,8 +283,7 @@ bool PlanNeedles(const SnapshotContext& ctx, const verify::Rule& rule, const tra
     plan.subjects.push_back({"presser foot", foot, {}});
     plan.legend.push_back({render::ToRgb(kFoot), "presser foot"});
   }
-  AddSection(ctx, s.tool_part, part, 50.0, plan);
-  if (rule.WorstEntryTool()) AddDrift(ctx, part * ToMetres(*rule.WorstEntryTool()), now, plan);
+  AddSection(ctx, s.tool_part, across, part, 40.0, plan);
   std::vector<Eigen::Vector3d> pierced;
   for (const auto& p :
        process::PenetrationPoints(*ctx.process, *ctx.ls->scene->surface, s.tool_part)) {

@@ -50,31 +50,30 @@ std::vector<int> Classify(const render::Segmentation& seg, const CloseUpPlan& pl
   return out;
 }
 
-// The plan's style with everything but the subjects left out (the subjects "alone").
-render::DrawStyle AloneStyle(const mjModel& model, const CloseUpPlan& plan) {
+// The plan's style with everything but subject `i` left out (the subject "alone").
+render::DrawStyle AloneStyle(const mjModel& model, const CloseUpPlan& plan, std::size_t i) {
+  const ShotSubject& subject = plan.subjects[i];
   render::DrawStyle style = plan.style;
-  std::vector<bool> keep(static_cast<std::size_t>(model.ngeom), false);
-  for (const ShotSubject& s : plan.subjects) {
-    for (int g : s.geoms) keep[static_cast<std::size_t>(g)] = true;
-  }
   for (int g = 0; g < model.ngeom; ++g) {
-    if (!keep[static_cast<std::size_t>(g)]) style.hidden.push_back(g);
+    if (std::find(subject.geoms.begin(), subject.geoms.end(), g) == subject.geoms.end()) {
+      style.hidden.push_back(g);
+    }
   }
   for (const render::Overlay& o : plan.overlays) {
-    bool subject = false;
-    for (const ShotSubject& s : plan.subjects) {
-      subject =
-          subject || std::find(s.overlays.begin(), s.overlays.end(), o.label) != s.overlays.end();
+    if (std::find(subject.overlays.begin(), subject.overlays.end(), o.label) ==
+        subject.overlays.end()) {
+      style.unsegmented_overlays.push_back(o.label);
     }
-    if (!subject) style.unsegmented_overlays.push_back(o.label);
   }
   return style;
 }
 
-// How one view shows the subjects: pixels alone and visible per subject, the pixels of the
-// subjects' silhouette that other geoms cover (by geom).
+// How one view shows the subjects: per subject, the pixels it covers drawn alone and those
+// where it is the nearest thing; the pixels of the subjects' silhouettes other geoms cover
+// (by geom). The subjects are drawn see-through, so one subject in front of another does not
+// count as hiding it.
 struct ViewCount {
-  std::vector<long> alone, visible;
+  std::vector<long> alone, visible, hidden_each;
   long silhouette = 0;
   std::map<int, long> hiders;  ///< geom id -> silhouette pixels it covers
   long hidden = 0;
@@ -87,31 +86,40 @@ ViewCount CountView(render::OffscreenRenderer& r, mjData* data, const mjModel& m
   const std::size_t n = plan.subjects.size();
   c.alone.assign(n, 0);
   c.visible.assign(n, 0);
-  const render::Segmentation solo =
-      r.RenderSegmentation(data, view, plan.overlays, AloneStyle(model, plan));
-  const std::vector<int> solo_class = Classify(solo, plan);
+  c.hidden_each.assign(n, 0);
   const render::Segmentation full = r.RenderSegmentation(data, view, plan.overlays, style);
   const std::vector<int> full_class = Classify(full, plan);
-  for (std::size_t p = 0; p < solo_class.size(); ++p) {
-    if (solo_class[p] >= 0) {
-      ++c.alone[static_cast<std::size_t>(solo_class[p])];
+  for (std::size_t i = 0; i < n; ++i) {
+    const render::Segmentation solo =
+        r.RenderSegmentation(data, view, plan.overlays, AloneStyle(model, plan, i));
+    for (std::size_t p = 0; p < solo.label.size(); ++p) {
+      if (solo.label[p] < 0) continue;
+      ++c.alone[i];
       ++c.silhouette;
       if (full_class[p] == kOtherGeom) {
         ++c.hidden;
+        ++c.hidden_each[i];
         ++c.hiders[full.geoms[static_cast<std::size_t>(full.label[p])]];
       }
     }
-    if (full_class[p] >= 0) ++c.visible[static_cast<std::size_t>(full_class[p])];
+  }
+  for (int k : full_class) {
+    if (k >= 0) ++c.visible[static_cast<std::size_t>(k)];
   }
   return c;
 }
 
-// Larger subjects (the smallest counts) and fewer of their pixels hidden score higher.
+// Larger subjects (the smallest counts) and fewer of their pixels hidden score higher; a
+// subject behind another one (drawn see-through) counts at a third.
 double Score(const ViewCount& c) {
   if (c.alone.empty()) return 0.0;
-  const long smallest = *std::min_element(c.alone.begin(), c.alone.end());
+  double smallest = 1e18;
+  for (std::size_t i = 0; i < c.alone.size(); ++i) {
+    const long behind = std::max(0L, c.alone[i] - c.visible[i] - c.hidden_each[i]);
+    smallest = std::min(smallest, static_cast<double>(c.visible[i]) + behind / 3.0);
+  }
   const double hidden = c.silhouette > 0 ? static_cast<double>(c.hidden) / c.silhouette : 1.0;
-  return static_cast<double>(smallest) * (1.0 - 0.8 * hidden);
+  return smallest * (1.0 - 0.8 * hidden);
 }
 
 double FrameDistance(const mjModel& model, double radius_m) {
@@ -227,7 +235,8 @@ bool ShootCloseUp(mjModel* model, mjData* data, const CloseUpPlan& plan, int wid
   shot.view = best;
   shot.pixels.clear();
   for (std::size_t i = 0; i < plan.subjects.size(); ++i) {
-    shot.pixels.push_back({plan.subjects[i].name, count.visible[i], count.alone[i]});
+    shot.pixels.push_back(
+        {plan.subjects[i].name, count.visible[i], count.alone[i], count.hidden_each[i]});
   }
   shot.transparent = style.transparent;
   shot.image = r->Render(data, best, plan.overlays, style);

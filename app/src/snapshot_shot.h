@@ -37,11 +37,12 @@ struct CloseUpPlan {
   std::vector<render::LegendEntry> legend;
 };
 
-/// One subject's pixels in the final view: visible, and when drawn alone (nothing else).
+/// One subject's pixels in the final view (segmentation, see-through geoms left out).
 struct SubjectPixels {
   std::string name;
-  long visible = 0;
-  long alone = 0;
+  long visible = 0;  ///< where it is the nearest thing
+  long alone = 0;    ///< where it is when drawn alone
+  long hidden = 0;   ///< of `alone`, those covered by a geom that is no subject
 };
 
 /// The picture of a plan and what the camera work measured.

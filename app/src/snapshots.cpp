@@ -163,7 +163,8 @@ nlohmann::json ShotJson(const mjModel& m, const std::string& file, const verify:
                         {"geoms", GeomNames(m, plan.subjects[i].geoms)},
                         {"overlays", plan.subjects[i].overlays},
                         {"pixels", p.visible},
-                        {"alone_pixels", p.alone}});
+                        {"alone_pixels", p.alone},
+                        {"hidden_pixels", p.hidden}});
   }
   j["subjects"] = subjects;
   j["joints"] = std::vector<double>(plan.joints.data(), plan.joints.data() + plan.joints.size());
@@ -182,6 +183,8 @@ int WriteCloseUps(const VerifySession& vs, const verify::Verifier& v, const veri
   DiagnosticSink sink;
   render::MjModelPtr model = render::LoadSceneModel(*vs.ls.scene, sink);
   if (PrintDiagnostics(sink) || !model) return kExitBadInput;
+  // Close-ups come as near as a few centimetres (the needles): a near clipping plane of 1 cm.
+  model->vis.map.znear = std::min<float>(model->vis.map.znear, 0.01 / model->stat.extent);
   render::MjDataPtr data(mj_makeData(model.get()));
   SnapshotContext ctx{&vs.ls, vs.model.get(), &vs.description, model.get(), data.get()};
   for (const auto& rule : v.Rules()) {
