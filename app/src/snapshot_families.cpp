@@ -108,7 +108,7 @@ bool PlanCollision(const SnapshotContext& ctx, const verify::Rule& rule,
   plan.centre_m = point;
   // The smaller body whole with room around it (the other one is often a rail or a mold).
   plan.radius_m =
-      std::clamp(1.6 * std::min(Reach(m, d, ga, point), Reach(m, d, gb, point)), 0.15, 1.0);
+      std::clamp(1.6 * std::min(Reach(m, d, ga, point), Reach(m, d, gb, point)), 0.08, 1.0);
   // The head in the part: the part's normal there. Looked at first along the surface where it
   // runs straightest (a cylinder's axis: the mold's section shows), from the head's side.
   std::optional<Eigen::Vector3d> normal;

@@ -155,7 +155,8 @@ nlohmann::json ShotJson(const mjModel& m, const std::string& file, const verify:
       {"lookat_m", {shot.view.lookat_m.x(), shot.view.lookat_m.y(), shot.view.lookat_m.z()}},
       {"distance_m", shot.view.distance_m},
       {"azimuth_deg", shot.view.azimuth_deg},
-      {"elevation_deg", shot.view.elevation_deg}};
+      {"elevation_deg", shot.view.elevation_deg},
+      {"znear_m", m.vis.map.znear * m.stat.extent}};
   nlohmann::json subjects = nlohmann::json::array();
   for (std::size_t i = 0; i < shot.pixels.size(); ++i) {
     const SubjectPixels& p = shot.pixels[i];
