@@ -33,7 +33,7 @@ void Frame(const std::vector<Eigen::Vector3d>& points, double min_m, CloseUpPlan
     hi = hi.cwiseMax(p);
   }
   plan.centre_m = 0.5 * (lo + hi);
-  plan.radius_m = std::max(min_m, 0.55 * (hi - lo).norm());
+  plan.radius_m = std::max(min_m, 0.45 * (hi - lo).norm());
 }
 
 // The tool point of a sample in the world (m), the model posed at the sample.
@@ -56,7 +56,7 @@ bool PlanKinematics(const SnapshotContext& ctx, const verify::Rule& rule,
   }
   const Eigen::Vector3d tool = ToolPoint(ctx, s);
   points.push_back(tool);
-  Frame(points, 0.8, plan);
+  Frame(points, 0.6, plan);
   plan.directions = Ring(8, {-20.0, -45.0});
   plan.style.others = kGrey;
   plan.overlays.push_back(MakeOverlay("tool", kMarker, 0.02, {tool}, false));

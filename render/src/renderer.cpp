@@ -99,7 +99,7 @@ void OffscreenRenderer::ApplyStyle(const DrawStyle& style, bool segment) {
         for (int c = 0; c < 4; ++c) g.rgba[c] = colour->rgba[static_cast<std::size_t>(c)];
         // See-through, but still segmented (opaque there: drawn in depth order).
         g.transparent = !segment && g.rgba[3] < 1.0f ? 1 : 0;
-      } else if (style.others && !clear) {
+      } else if (style.others) {
         for (int c = 0; c < 4; ++c) g.rgba[c] = (*style.others)[static_cast<std::size_t>(c)];
       }
       if (clear) {

@@ -233,24 +233,42 @@ TEST(Snapshots, CoupledCircleShowsTheNeedles) {
   EXPECT_TRUE(magnified) << pic->at("legend").dump();
 }
 
-TEST(Snapshots, StringerSeamShowsTheFootAndTheStringer) {
+TEST(Snapshots, StringerSeamShowsTheNeedleInTheStringerAndTheCrossing) {
   const fs::path dir =
       Snapshots("seam", "stitch --scene " + Scene("rs566_stringer_seam") + " --path seam",
                 "rs566_stringer_seam");
   const auto seen = ExpectSubjectsVisible(dir, "collision.head_mold", "rs566_stringer_seam");
   ASSERT_EQ(seen.size(), 2u);
+  EXPECT_EQ(seen[1], "constraint:stringer");
   ExpectTitleBar(dir / "collision.head_mold.png");
+  // The seam also stitches into the stringer's footprint: the crossing from above.
+  EXPECT_EQ(ExpectSubjectsVisible(dir, "constraint.crossing", "rs566_stringer_seam"),
+            (std::vector<std::string>{"constraint:stringer"}));
+  ExpectTitleBar(dir / "constraint.crossing.png");
+  const nlohmann::json manifest = Manifest(dir);
+  const nlohmann::json* crossing = Picture(manifest, "constraint.crossing");
+  ASSERT_NE(crossing, nullptr);
+  const auto& marks = crossing->at("subjects").at(1);
+  EXPECT_EQ(marks.at("name").get<std::string>(), "crossing stitches");
+  EXPECT_GE(marks.at("pixels").get<long>(), 100) << marks.dump();
 }
 
 constexpr const char* kFlatHead = "%\nG21 G90\nT1 M6\nG0 X0 Y0 Z0 A0 B0 C-90 U0 V0\nM10\n";
 
+// The head tipped up past what a5 can reach (verify_test's programme): link_5 in view; the
+// rail driven past its travel: the carriage.
 TEST(Snapshots, JointLimitShowsTheJointsLink) {
   const fs::path dir = SnapshotsOf(
-      "kin", std::string(kFlatHead) + "G1 X5 U5 V5 F1500\nG1 X10 E15000 U10 V10\nM30\n%\n",
+      "kin", std::string(kFlatHead) + "G1 X5 U5 V5 F1500\nG1 X10 A0 B150 C-90 U10 V10\nM30\n%\n",
       "flat_straight");
-  const auto seen = ExpectSubjectsVisible(dir, "kin.joint_limit", "flat_straight");
-  EXPECT_EQ(seen, (std::vector<std::string>{"carriage"}));
+  EXPECT_EQ(ExpectSubjectsVisible(dir, "kin.joint_limit", "flat_straight"),
+            (std::vector<std::string>{"link_5"}));
   ExpectTitleBar(dir / "kin.joint_limit.png");
+  const fs::path rail = SnapshotsOf(
+      "kin_rail", std::string(kFlatHead) + "G1 X5 U5 V5 F1500\nG1 X10 E15000 U10 V10\nM30\n%\n",
+      "flat_straight");
+  EXPECT_EQ(ExpectSubjectsVisible(rail, "kin.joint_limit", "flat_straight"),
+            (std::vector<std::string>{"carriage"}));
 }
 
 TEST(Snapshots, PassingRunStillWritesTheOverview) {

@@ -44,8 +44,8 @@ struct DrawStyle {
   float transparent_alpha = 0.2f;
   std::vector<int> hidden;          ///< geom ids not drawn at all (nor segmented)
   std::vector<GeomColour> colours;  ///< recoloured geoms
-  /// When set, every model geom not recoloured (and not transparent) is drawn in this colour
-  /// (greying out the rest of the cell).
+  /// When set, every model geom not recoloured is drawn in this colour (greying out the rest
+  /// of the cell; see-through ones too).
   std::optional<std::array<float, 4>> others;
   /// Overlay labels left out of the segmentation (drawn, never counted as hiding anything).
   std::vector<std::string> unsegmented_overlays;
