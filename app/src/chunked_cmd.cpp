@@ -164,6 +164,28 @@ bool ParseShard(const std::string& text, int& shard, int& shards) {
   return false;
 }
 
+namespace {
+
+// What every chunk's run is made from.
+ChunkSetup MakeChunkSetup(const ChunkedInvocation& inv, VerifySession& vs) {
+  ChunkSetup setup;
+  setup.dialect = &vs.dialect;
+  setup.program_path = inv.program;
+  setup.cell = &vs.cell;
+  setup.robot = vs.ls.robot.get();
+  setup.process = vs.model.get();
+  setup.collision = vs.collision.get();
+  setup.mujoco = vs.mj.kinematics.get();
+  setup.execute = vs.execute;
+  setup.timing = vs.timing;
+  setup.rules = vs.Rules();
+  setup.keep_stitch_marks = inv.stitch_marks;
+  setup.chunk_poses = inv.chunk_poses;
+  return setup;
+}
+
+}  // namespace
+
 int RunChunkedVerify(const ChunkedInvocation& inv, VerifySession& vs, sim::ProgramInput& input,
                      BoundedDiagnosticSink& diagnostics, ChunkedOutcome& out) {
   const int jobs = inv.jobs > 0 ? inv.jobs : DefaultJobs();
@@ -202,18 +224,7 @@ int RunChunkedVerify(const ChunkedInvocation& inv, VerifySession& vs, sim::Progr
     scanned = true;
     queue.Close();
   });
-  ChunkSetup setup;
-  setup.dialect = &vs.dialect;
-  setup.program_path = inv.program;
-  setup.cell = &vs.cell;
-  setup.robot = vs.ls.robot.get();
-  setup.process = vs.model.get();
-  setup.collision = vs.collision.get();
-  setup.mujoco = vs.mj.kinematics.get();
-  setup.execute = vs.execute;
-  setup.timing = vs.timing;
-  setup.rules = vs.Rules();
-  setup.keep_stitch_marks = inv.stitch_marks;
+  const ChunkSetup setup = MakeChunkSetup(inv, vs);
   const auto tick = [&] {
     if (!progress && scanned) {
       Progress::Options po;
@@ -261,6 +272,7 @@ int RunChunkedVerify(const ChunkedInvocation& inv, VerifySession& vs, sim::Progr
     return kExitInternal;
   }
   out.verifier = std::move(run.verifier);
+  out.poses = std::move(run.poses);
   out.summary = trace::TraceFileSummary{scan.summary.lines, scan.summary.moves, scan.summary.time_s,
                                         run.timed.Value()};
   return kExitOk;

@@ -1,6 +1,7 @@
 #include "chunked_verify.h"
 
 #include <chrono>
+#include <climits>
 #include <condition_variable>
 #include <cstdio>
 #include <cstring>
@@ -23,6 +24,8 @@ class Gate final : public trace::TraceSink {
         lines_done_(lines_done),
         passed_(chunk.first_line - 1) {}
   void SetTiming(const sim::TimingSink* timing) { timing_ = timing; }
+  /// Also gives the chunk's own samples (not the warm-up's) to `recorder`.
+  void SetRecorder(trace::TraceSink* recorder) { recorder_ = recorder; }
 
   void OnLine(const trace::LineRecord& line) override {
     if (phase_ == Phase::kWarm && line.source_line >= chunk_.first_line) {
@@ -43,7 +46,9 @@ class Gate final : public trace::TraceSink {
     }
   }
   void OnSample(const trace::TraceSample& s) override {
-    if (phase_ != Phase::kDone) verifier_.OnSample(s);
+    if (phase_ == Phase::kDone) return;
+    verifier_.OnSample(s);
+    if (recorder_ != nullptr && phase_ == Phase::kCounting) recorder_->OnSample(s);
   }
   bool Done() const { return phase_ == Phase::kDone; }
   // The programme ended before the chunk's first motion line: the chunk counts nothing.
@@ -84,6 +89,7 @@ class Gate final : public trace::TraceSink {
   const sim::Chunk& chunk_;
   std::atomic<long>* lines_done_;
   const sim::TimingSink* timing_ = nullptr;
+  trace::TraceSink* recorder_ = nullptr;
   Phase phase_ = Phase::kWarm;
   int passed_ = 0;  ///< programme lines passed so far (before first_line: none counted)
   long unreported_ = 0;
@@ -163,6 +169,12 @@ ChunkResult RunChunk(const ChunkSetup& setup, const sim::Chunk& chunk,
   Gate gate(*result.verifier, result.chunk, lines_done);
   sim::TimingSink timing(*timing_cell, *setup.robot, setup.timing, gate);
   gate.SetTiming(&timing);
+  std::optional<PoseRecorder> recorder;
+  if (setup.chunk_poses > 0) {
+    result.poses = std::make_unique<PoseTrack>(setup.chunk_poses);
+    recorder.emplace(*result.poses, nullptr);
+    gate.SetRecorder(&*recorder);
+  }
   sim::ChunkHooks hooks;
   hooks.at_boundary = [&](int line, sim::ChunkCarry carry) {
     (line == chunk.first_line ? result.start : result.end).input = std::move(carry);
@@ -185,6 +197,7 @@ ChunkResult RunChunk(const ChunkSetup& setup, const sim::Chunk& chunk,
   result.end.output = std::move(gate.end_);
   result.timed = gate.timed_;
   result.lines = gate.lines_;
+  if (result.poses) result.poses->Thin(PointedLines(*result.verifier), INT_MAX);
   result.ok = true;
   return result;
 }
@@ -239,6 +252,10 @@ ChunkMerger::Outcome ChunkMerger::Add(ChunkResult result) {
     result.verifier.reset();
   }
   timed_.Add(result.timed);
+  if (result.poses) {
+    poses_.Append(*result.poses);
+    result.poses.reset();
+  }
   last_ = std::move(result);
   ++taken_;
   return Outcome::kTaken;
@@ -395,6 +412,7 @@ ChunkedRun RunChunks(const ChunkSetup& setup, int jobs, bool starts_at_zero,
   out.first_mismatch = merger.FirstMismatch();
   out.verifier = merger.TakeVerifier();
   out.timed = merger.Timed();
+  out.poses = std::move(merger.Poses());
   out.start = merger.FirstStart();
   out.end = merger.Last()->end;
   return out;

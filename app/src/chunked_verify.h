@@ -7,11 +7,13 @@
 
 #include <atomic>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "pose_track.h"
 #include "stitchsim/common/exact_sum.h"
 #include "stitchsim/process/stitch_cycle.h"
 #include "stitchsim/program/dialect.h"
@@ -37,6 +39,9 @@ struct ChunkSetup {
   sim::TimingOptions timing;
   verify::RuleContext rules;
   bool keep_stitch_marks = false;
+  /// Record line-end poses (verify --html): at most this many per chunk beside the lines its
+  /// findings point at; 0 = none.
+  std::size_t chunk_poses = 0;
 };
 
 /// A chunk's state at one boundary: the executor's and the timing sink's input side when the
@@ -59,6 +64,7 @@ struct ChunkResult {
   std::unique_ptr<verify::Verifier> verifier;  ///< the chunk's lines only
   ExactSum timed;                              ///< timed durations of the chunk's lines (s)
   long lines = 0;                              ///< motion lines counted
+  std::unique_ptr<PoseTrack> poses;            ///< ChunkSetup::chunk_poses > 0: the chunk's
   bool ok = false;
   std::string error;  ///< when !ok
 };
@@ -79,6 +85,8 @@ class ChunkMerger {
   int Taken() const { return taken_; }
   std::unique_ptr<verify::Verifier> TakeVerifier() { return std::move(verifier_); }
   const ExactSum& Timed() const { return timed_; }
+  /// The taken chunks' poses, in order (empty without ChunkSetup::chunk_poses).
+  PoseTrack& Poses() { return poses_; }
   const ChunkResult* Last() const { return last_ ? &*last_ : nullptr; }
   const BoundaryState& FirstStart() const { return first_start_; }
   /// The first boundary that did not match, and what differed (empty: none).
@@ -87,6 +95,7 @@ class ChunkMerger {
  private:
   std::unique_ptr<verify::Verifier> verifier_;
   ExactSum timed_;
+  PoseTrack poses_{std::numeric_limits<std::size_t>::max()};
   int taken_ = 0;
   std::optional<ChunkResult> last_;  ///< without its verifier (absorbed)
   BoundaryState first_start_;
@@ -98,6 +107,7 @@ struct ChunkedRun {
   std::string error;
   std::unique_ptr<verify::Verifier> verifier;  ///< the merged verifier
   ExactSum timed;
+  PoseTrack poses{std::numeric_limits<std::size_t>::max()};  ///< every chunk's, in order
   int reruns = 0;
   std::string first_mismatch;  ///< what differed at the first chunk run again
   BoundaryState start, end;    ///< of the first and the last chunk run

@@ -1,7 +1,11 @@
 // `stitchsim verify`: execute a programme on the cell, check every stitch and pose, report.
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +16,8 @@
 #include "chunked_cmd.h"
 #include "cli_common.h"
 #include "commands.h"
+#include "html_report.h"
+#include "pose_track.h"
 #include "snapshots.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/common/progress.h"
@@ -37,6 +43,7 @@ struct VerifyArgs {
   std::string report_json;
   std::string junit;
   std::string snapshots;
+  std::string html;
   std::string save_trace;
   bool no_collision = false;
   bool allow_mismatch = false;
@@ -154,17 +161,57 @@ int WriteSnapshots(const VerifySession& vs, const verify::Verifier& verifier,
   return WriteSnapshotFolder(vs, verifier, report, dir);
 }
 
+// --html: the snapshots (into --snapshots' folder, or a scratch folder removed afterwards)
+// read back, then the page.
+int WriteHtml(const VerifyArgs& a, const VerifySession& vs, const verify::Report& report,
+              const verify::Verifier& verifier, PoseTrack& poses) {
+  namespace fs = std::filesystem;
+  const bool scratch = a.snapshots.empty();
+  const fs::path dir =
+      scratch ? fs::temp_directory_path() / ("stitchsim-html-" + std::to_string(::getpid()))
+              : fs::path(a.snapshots);
+  if (scratch && WriteSnapshots(vs, verifier, report, dir.string()) != kExitOk) {
+    return kExitBadInput;
+  }
+  HtmlInputs in;
+  std::vector<fs::path> pngs;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    if (e.path().extension() == ".png") pngs.push_back(e.path());
+  }
+  std::sort(pngs.begin(), pngs.end(), [](const fs::path& x, const fs::path& y) {
+    const bool ox = x.filename() == "overview.png", oy = y.filename() == "overview.png";
+    return ox != oy ? ox : x.filename() < y.filename();
+  });
+  for (const fs::path& png : pngs) {
+    std::ifstream f(png, std::ios::binary);
+    in.snapshots.emplace_back(png.filename().string(),
+                              std::string(std::istreambuf_iterator<char>(f), {}));
+  }
+  if (scratch) fs::remove_all(dir, ec);
+  poses.SetMaxPoses(HtmlLimits{}.max_poses);
+  poses.Thin(PointedLines(verifier), INT_MAX);
+  in.report = &report;
+  in.verifier = &verifier;
+  in.scene = &vs.ls;
+  in.poses = &poses;
+  return WriteHtmlReport(a.html, in);
+}
+
 // The serial run (--dynamics, --save-trace, a programme read from a pipe): executor ->
 // progress -> timing (time law, inverse dynamics) [-> physics] -> verifier, trace file.
 int RunSerial(const VerifyArgs& a, VerifySession& vs, sim::ProgramInput& input,
               const program::ProgramIdentity& id, BoundedDiagnosticSink& diagnostics) {
-  verify::Verifier verifier(vs.Rules(), !a.snapshots.empty());
+  verify::Verifier verifier(vs.Rules(), !a.snapshots.empty() || !a.html.empty());
+  PoseTrack poses(HtmlLimits{}.max_poses);
+  PoseRecorder recorder(poses, &verifier);
+  TeeSink rules(verifier, a.html.empty() ? nullptr : &recorder);
   std::unique_ptr<trace::TraceFileWriter> saved;
   if (!a.save_trace.empty()) {
     saved = OpenTrace(a, vs.ls, vs.cell, vs.description, id, vs.stitch_length_mm);
     if (!saved) return kExitBadInput;
   }
-  TeeSink tee(verifier, saved.get());
+  TeeSink tee(rules, saved.get());
   std::optional<sim::DynamicsSink> physics;
   if (a.dynamics) physics.emplace(*vs.mj.physics, *vs.mj.physics_poses, tee);
   sim::TimingSink timing(*vs.mj.timing, *vs.ls.robot, vs.timing,
@@ -190,6 +237,7 @@ int RunSerial(const VerifyArgs& a, VerifySession& vs, sim::ProgramInput& input,
   if (!a.snapshots.empty() && WriteSnapshots(vs, verifier, report, a.snapshots) != kExitOk) {
     return kExitBadInput;
   }
+  if (!a.html.empty() && WriteHtml(a, vs, report, verifier, poses) != kExitOk) return kExitBadInput;
   return report.errors == 0 ? kExitOk : kExitFindings;
 }
 
@@ -205,7 +253,8 @@ int RunChunked(const VerifyArgs& a, VerifySession& vs, sim::ProgramInput& input,
   inv.no_collision = a.no_collision;
   inv.allow_mismatch = a.allow_mismatch;
   inv.quiet = a.quiet;
-  inv.stitch_marks = !a.snapshots.empty();
+  inv.stitch_marks = !a.snapshots.empty() || !a.html.empty();
+  inv.chunk_poses = a.html.empty() ? 0 : 1024;
   inv.jobs = a.jobs;
   if (!a.shard.empty() && !ParseShard(a.shard, inv.shard, inv.shards)) return kExitBadInput;
   inv.part = a.part;
@@ -221,6 +270,9 @@ int RunChunked(const VerifyArgs& a, VerifySession& vs, sim::ProgramInput& input,
   if (!a.snapshots.empty() && WriteSnapshots(vs, *out.verifier, report, a.snapshots) != kExitOk) {
     return kExitBadInput;
   }
+  if (!a.html.empty() && WriteHtml(a, vs, report, *out.verifier, out.poses) != kExitOk) {
+    return kExitBadInput;
+  }
   return report.errors == 0 ? kExitOk : kExitFindings;
 }
 
@@ -228,6 +280,7 @@ int RunVerify(const VerifyArgs& a) {
   if (!OutputsDistinct({{"--report", a.report_json},
                         {"--junit", a.junit},
                         {"--save-trace", a.save_trace},
+                        {"--html", a.html},
                         {"--part", a.part}})) {
     return kExitBadInput;
   }
@@ -238,7 +291,7 @@ int RunVerify(const VerifyArgs& a) {
     return kExitBadInput;
   }
   if (!a.shard.empty() && (a.dynamics || !a.save_trace.empty() || !a.report_json.empty() ||
-                           !a.junit.empty() || !a.snapshots.empty())) {
+                           !a.junit.empty() || !a.snapshots.empty() || !a.html.empty())) {
     PrintError("cli-usage",
                "--shard writes a partial result (--part) only: reports come from `stitchsim "
                "report merge`; --dynamics and --save-trace run in one process");
@@ -300,6 +353,9 @@ void AddVerifyCommand(CLI::App& app, int& exit_code) {
                   "Write the trace the rules read here, to check again with `stitchsim recheck`");
   cmd->add_option("--snapshots", args->snapshots,
                   "Write overview.png and <rule>.png close-ups into this folder");
+  cmd->add_option("--html", args->html,
+                  "Write one self-contained HTML report here: findings, snapshots, a 3D view of "
+                  "the cell posed at any line, plots of every rule along the programme");
   AddScenePathFlag(*cmd);
   cmd->add_flag("--no-collision", args->no_collision,
                 "Skip the FCL collision checks (collision.* rules)");

@@ -199,10 +199,10 @@ std::size_t Columns(const std::string& s) {
 
 TEST(report_json, KeysInDocumentedOrder) {
   const OrderedJson j = OrderedJson::parse(ReportToJson(FailingReport()));
-  EXPECT_EQ(Keys(j), (std::vector<std::string>{"stitchsim_report", "stitchsim_version", "verdict",
-                                               "program", "scene", "counts", "stitch_length_mm",
-                                               "cycle_time_s", "cycle_time_timed_s", "rules",
-                                               "skipped_rules"}));
+  EXPECT_EQ(Keys(j),
+            (std::vector<std::string>{"stitchsim_report", "stitchsim_version", "verdict", "program",
+                                      "scene", "counts", "stitch_length_mm", "cycle_time_s",
+                                      "cycle_time_timed_s", "rules", "skipped_rules"}));
   EXPECT_EQ(Keys(j["scene"]), (std::vector<std::string>{"file", "name", "head"}));
   EXPECT_EQ(Keys(j["counts"]),
             (std::vector<std::string>{"lines", "moves", "stitches", "errors", "warnings"}));
@@ -216,7 +216,7 @@ TEST(report_json, KeysInDocumentedOrder) {
   EXPECT_EQ(Keys(j["rules"][0]["worst"]), (std::vector<std::string>{"value", "line", "stitch"}));
   EXPECT_EQ(Keys(j["rules"][0]["findings"][0]),
             (std::vector<std::string>{"rule", "severity", "line", "stitch", "value", "limit",
-                                      "unit", "subject", "message"}));
+                                      "unit", "subject", "message", "position_mm"}));
 }
 
 TEST(report_json, ValuesMatchTheReport) {

@@ -112,6 +112,7 @@ class ClearanceRule final : public Rule {
     Counted();
     if (!r.error.empty() || !r.contacts.empty()) return;  // the contact rules report those
     const double mm = r.min_clearance_m * 1000.0;
+    if (r.min_clearance_m < 1e8) Plot(s.source_line, mm);
     if (!summary_.worst_value || mm < *summary_.worst_value) {
       summary_.worst_value = mm;
       summary_.worst_line = s.source_line;

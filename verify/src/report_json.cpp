@@ -36,6 +36,12 @@ Json FindingToJson(const Finding& finding) {
   j["unit"] = finding.unit;
   j["subject"] = finding.subject;
   j["message"] = finding.message;
+  if (finding.position_mm) {
+    const auto& p = *finding.position_mm;
+    j["position_mm"] = Json::array({Number(p[0]), Number(p[1]), Number(p[2])});
+  } else {
+    j["position_mm"] = nullptr;
+  }
   return j;
 }
 

@@ -23,6 +23,7 @@ void Rule::SetWorstSample(const trace::TraceSample& sample) {
 }
 
 void Rule::Observe(double value, int line, long stitch, const trace::TraceSample* sample) {
+  series_.Add(line, value);
   if (!summary_.worst_value || value > *summary_.worst_value) {
     summary_.worst_value = value;
     summary_.worst_line = line;
@@ -76,6 +77,10 @@ void Rule::Record(FindingSeverity severity, double value, double limit, int line
   f.unit = summary_.unit;
   f.subject = subject;
   f.message = std::move(message);
+  if (sample != nullptr) {
+    const Eigen::Vector3d& p = sample->tool_part.translation();
+    f.position_mm = std::array<double, 3>{p.x(), p.y(), p.z()};
+  }
   if (seen != nullptr) {
     const std::size_t index = seen->index;
     if (index < summary_.findings.size() && Worse(severity, value, limit, summary_.findings[index]))
@@ -223,6 +228,7 @@ void Rule::Absorb(const Rule& later) {
     worst_entry_tool_ = later.worst_entry_tool_;
   }
   saw_input_ = saw_input_ || later.saw_input_;
+  series_.Absorb(later.series_);
   AbsorbExtra(later);
 }
 
@@ -241,6 +247,7 @@ void Rule::ResetAccumulators() {
   worst_entry_tool_.reset();
   recent_lines_.clear();
   saw_input_ = false;
+  series_.Clear();
   ResetExtra();
 }
 

@@ -26,6 +26,18 @@ FindingSeverity SeverityFrom(const json& j) {
   throw std::invalid_argument("severity '" + s + "'");
 }
 
+json PositionToJson(const std::optional<std::array<double, 3>>& p) {
+  return p ? json::array({DoubleToJson((*p)[0]), DoubleToJson((*p)[1]), DoubleToJson((*p)[2])})
+           : json(nullptr);
+}
+
+std::optional<std::array<double, 3>> PositionFrom(const json& j) {
+  if (j.is_null()) return std::nullopt;
+  if (!j.is_array() || j.size() != 3) throw std::invalid_argument("position_mm");
+  return std::array<double, 3>{DoubleFromJson(j.at(0)), DoubleFromJson(j.at(1)),
+                               DoubleFromJson(j.at(2))};
+}
+
 json FindingToJson(const Finding& f) {
   return json{{"rule", f.rule},
               {"severity", SeverityText(f.severity)},
@@ -35,7 +47,8 @@ json FindingToJson(const Finding& f) {
               {"limit", DoubleToJson(f.limit)},
               {"unit", f.unit},
               {"subject", f.subject},
-              {"message", f.message}};
+              {"message", f.message},
+              {"position_mm", PositionToJson(f.position_mm)}};
 }
 
 Finding FindingFrom(const json& j) {
@@ -49,6 +62,7 @@ Finding FindingFrom(const json& j) {
   f.unit = j.at("unit").get<std::string>();
   f.subject = j.at("subject").get<std::string>();
   f.message = j.at("message").get<std::string>();
+  f.position_mm = PositionFrom(j.at("position_mm"));
   return f;
 }
 
@@ -149,13 +163,16 @@ json Rule::SavePartial() const {
   return json{{"id", summary_.id},
               {"summary", SummaryToJson(summary_)},
               {"extra", std::move(extra)},
-              {"base", json{{"saw_input", saw_input_}, {"recent_lines", std::move(recent)}}}};
+              {"base", json{{"saw_input", saw_input_},
+                            {"recent_lines", std::move(recent)},
+                            {"series", series_.ToJson()}}}};
 }
 
 bool Rule::LoadPartial(const json& j, std::string& error) {
   RuleSummary loaded;
   std::deque<LineFinding> recent;
   bool saw_input = false;
+  ValueSeries series;
   try {
     if (!j.is_object()) throw std::invalid_argument("not an object");
     if (j.at("id").get<std::string>() != summary_.id) {
@@ -176,6 +193,7 @@ bool Rule::LoadPartial(const json& j, std::string& error) {
            index < 0 ? static_cast<std::size_t>(-1) : static_cast<std::size_t>(index)});
     }
     if (recent.size() > kRecentFindingLines) throw std::invalid_argument("too many recent lines");
+    if (!series.FromJson(base.at("series"))) throw std::invalid_argument("malformed \"series\"");
     if (!LoadExtra(j.at("extra"))) throw std::invalid_argument("malformed \"extra\"");
   } catch (const std::exception& e) {
     error = "rule " + summary_.id + ": " + e.what();
@@ -184,6 +202,7 @@ bool Rule::LoadPartial(const json& j, std::string& error) {
   summary_ = std::move(loaded);
   recent_lines_ = std::move(recent);
   saw_input_ = saw_input;
+  series_ = std::move(series);
   worst_sample_.reset();
   worst_entry_tool_.reset();
   return true;

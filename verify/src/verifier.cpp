@@ -79,6 +79,7 @@ void Verifier::OnSample(const trace::TraceSample& s) {
       const std::size_t idx = static_cast<std::size_t>(std::max(0L, s.stitch - 1));
       if (marks_.size() <= idx) marks_.resize(idx + 1);
       marks_[idx].position_mm = s.tool_part.translation().cast<float>();
+      marks_[idx].line = s.source_line;
     }
     PenetrationRecord p;
     p.stitch = s.stitch;

@@ -96,7 +96,10 @@ void Verifier::Absorb(Verifier& later) {
   const std::size_t had = marks_.size();
   if (later.marks_.size() > had) marks_.resize(later.marks_.size());
   for (std::size_t i = 0; i < later.marks_.size(); ++i) {
-    if (i >= had) marks_[i].position_mm = later.marks_[i].position_mm;
+    if (i >= had) {
+      marks_[i].position_mm = later.marks_[i].position_mm;
+      marks_[i].line = later.marks_[i].line;
+    }
     marks_[i].severity = std::max(marks_[i].severity, later.marks_[i].severity);
   }
   if (later.saw_input_) {  // the carry is the later part's

@@ -3,6 +3,7 @@
 // (verify/verifier.h), written as text, JSON (docs/report-format.md) and JUnit XML. Writers
 // are deterministic: the same report gives byte-identical output.
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,10 @@ struct Finding {
   std::string unit;     ///< "mm", "deg", "%", "N", "" (dimensionless)
   std::string subject;  ///< what was measured: a needle ("insertion"), a joint ("a5"), ...
   std::string message;  ///< one sentence for people
+  /// Where: the tool point of the sample the finding was made at, part frame, mm (absent for
+  /// a finding not made at a sample, e.g. program.stitch_count). `stitchsim diff` matches
+  /// findings of two programmes by it.
+  std::optional<std::array<double, 3>> position_mm;
 };
 
 /// One subject's figure beside its own limits, for a rule whose subjects are limited
@@ -79,7 +84,7 @@ struct Report {
   long moves = 0;       ///< motion lines executed
   long stitches = 0;    ///< stitch cycles executed
   double stitch_length_mm = 0.0;
-  double cycle_time_s = 0.0;         ///< programme time at the programmed speeds (simple)
+  double cycle_time_s = 0.0;  ///< programme time at the programmed speeds (simple)
   /// Programme time on the controller's time law (acceleration ramps, axis limits, blending;
   /// docs/timing.md); 0 when the run was not timed.
   double cycle_time_timed_s = 0.0;

@@ -14,6 +14,7 @@
 #include "stitchsim/scene/scene.h"
 #include "stitchsim/trace/trace.h"
 #include "stitchsim/verify/report.h"
+#include "stitchsim/verify/value_series.h"
 
 namespace stitchsim::verify {
 
@@ -75,6 +76,11 @@ class Rule {
   /// For a worst sample inside a needle window (needle.* rules): the tool pose where the
   /// needles entered the preform in that window (part frame, mm); else empty.
   const std::optional<Eigen::Isometry3d>& WorstEntryTool() const { return worst_entry_tool_; }
+  /// The values the rule checked along the programme (its unit, against its own limits), for
+  /// plots; an accumulator (merged, reset, saved with the partial).
+  const ValueSeries& Series() const { return series_; }
+  /// The series' values must stay above the limits (collision.clearance, afp.steering_radius).
+  bool LowerBound() const { return worst_is_smallest_; }
 
   // Chunked runs (Verifier::Absorb, ResetAccumulators, Carry, SavePartial). A rule's state is
   // config (limits, from the context), accumulators (the summary, its findings, the worst
@@ -138,7 +144,9 @@ class Rule {
   /// message stay; error beats warning, then the larger value over its limit).
   void Record(FindingSeverity severity, double value, double limit, int line, long stitch,
               const std::string& subject, std::string message, const trace::TraceSample* sample);
-  /// Tracks the worst value without a finding.
+  /// Adds a value to the plotted series only (rules that track their worst themselves).
+  void Plot(int line, double value) { series_.Add(line, value); }
+  /// Tracks the worst value without a finding (and plots it).
   void Observe(double value, int line, long stitch, const trace::TraceSample* sample);
   /// Adds a subject with its own limits (RuleSummary::subjects); returns its index.
   std::size_t AddSubject(std::string subject, std::optional<double> error_limit,
@@ -148,6 +156,7 @@ class Rule {
 
   RuleSummary summary_;
   std::optional<trace::TraceSample> worst_sample_;
+  ValueSeries series_;
   /// The worst value is the smallest (a lower-bound rule that tracks its worst itself, e.g.
   /// collision.clearance): merging keeps the smaller.
   bool worst_is_smallest_ = false;

@@ -21,6 +21,7 @@ struct StitchMark {
   Eigen::Vector3f position_mm =
       Eigen::Vector3f::Zero();  ///< tool point at needle entry, part frame
   std::uint8_t severity = 0;    ///< 0 clean, 1 warning, 2 error
+  int line = 0;                 ///< programme line of the needle entry
 };
 
 class Verifier : public trace::TraceSink {
