@@ -100,13 +100,26 @@ bool PlanConstraint(const SnapshotContext& ctx, const verify::Rule& rule,
   // Where the crossing is: the stitch's tool point, else the constraint's centre.
   Eigen::Vector3d at = GeomCentre(*ctx.data, geoms.front());
   Eigen::Vector3d normal = part.linear() * Eigen::Vector3d::UnitZ();
+  // Every kept finding on this constraint with a place (tool point, part frame), on the
+  // preform's top.
+  auto on_top = [&](const Eigen::Vector3d& p_mm) {
+    const geom::SurfaceProjection p = ctx.ls->scene->surface->Project(p_mm);
+    return part * ((p.point + (ctx.ls->scene->preform_thickness_mm + 0.5) * p.normal) / 1000.0);
+  };
   std::vector<Eigen::Vector3d> marks;
+  for (const verify::Finding& x : rule.Summary().findings) {
+    if (x.subject == f->subject && x.position_mm) {
+      marks.push_back(
+          on_top(Eigen::Vector3d((*x.position_mm)[0], (*x.position_mm)[1], (*x.position_mm)[2])));
+    }
+  }
   if (s != nullptr) {
     const geom::SurfaceProjection p = ctx.ls->scene->surface->Project(s->tool_part.translation());
-    const Eigen::Vector3d top = p.point + (ctx.ls->scene->preform_thickness_mm + 0.5) * p.normal;
-    at = part * (top / 1000.0);
+    at = on_top(s->tool_part.translation());
     normal = part.linear() * p.normal;
     marks.push_back(at);
+  } else if (f->position_mm) {
+    at = on_top(Eigen::Vector3d((*f->position_mm)[0], (*f->position_mm)[1], (*f->position_mm)[2]));
   }
   plan.centre_m = at;
   plan.radius_m = 0.15;
@@ -117,10 +130,23 @@ bool PlanConstraint(const SnapshotContext& ctx, const verify::Rule& rule,
   Recolour(plan, geoms, kHighlight);
   plan.subjects.push_back({"constraint:" + f->subject, geoms, {}});
   plan.legend.push_back({render::ToRgb(kHighlight), "constraint " + f->subject});
+  // The seam's other stitches around it, so the crossing reads as a place on the seam.
+  std::vector<Eigen::Vector3d> around;
+  if (ctx.stitches != nullptr) {
+    for (const verify::StitchMark& st : *ctx.stitches) {
+      const Eigen::Vector3d w = on_top(st.position_mm.cast<double>());
+      if (st.line > 0 && (w - at).norm() < plan.radius_m) around.push_back(w);
+    }
+  }
+  if (!around.empty()) {
+    plan.overlays.push_back(MakeOverlay("stitch", kAxis, 0.003, around, false));
+    plan.style.unsegmented_overlays.push_back("stitch");
+    plan.legend.push_back({render::ToRgb(kAxis), "stitches of the programme"});
+  }
   if (!marks.empty()) {
     plan.overlays.push_back(MakeOverlay("crossing", kDrift, 0.008, marks, false));
     plan.subjects.push_back({"crossing stitches", {}, {"crossing"}});
-    plan.legend.push_back({render::ToRgb(kDrift), "stitch crossing the constraint"});
+    plan.legend.push_back({render::ToRgb(kDrift), "stitches crossing the constraint"});
   }
   return true;
 }

@@ -14,6 +14,7 @@
 #include "stitchsim/process/stitch_cycle.h"
 #include "stitchsim/trace/trace.h"
 #include "stitchsim/verify/rule.h"
+#include "stitchsim/verify/verifier.h"
 
 namespace stitchsim::app {
 
@@ -24,6 +25,7 @@ struct SnapshotContext {
   const trace::CellDescription* cell = nullptr;    ///< collision body names
   mjModel* model = nullptr;                        ///< the scene's MuJoCo model
   mjData* data = nullptr;                          ///< posed by PlanCloseUp at the picture's joints
+  const std::vector<verify::StitchMark>* stitches = nullptr;  ///< every stitch, by verdict
 };
 
 /// The family a rule's close-up belongs to: "collision", "needle", "stitch", "kinematics",

@@ -187,7 +187,8 @@ int WriteCloseUps(const VerifySession& vs, const verify::Verifier& v, const veri
   // Close-ups come as near as a few centimetres (the needles): a near clipping plane of 1 cm.
   model->vis.map.znear = std::min<float>(model->vis.map.znear, 0.01 / model->stat.extent);
   render::MjDataPtr data(mj_makeData(model.get()));
-  SnapshotContext ctx{&vs.ls, vs.model.get(), &vs.description, model.get(), data.get()};
+  SnapshotContext ctx{&vs.ls,      vs.model.get(), &vs.description,
+                      model.get(), data.get(),     &v.StitchMarks()};
   for (const auto& rule : v.Rules()) {
     if (rule->Summary().errors == 0) continue;
     std::optional<CloseUpPlan> plan;
