@@ -130,7 +130,7 @@ bool PlanCollision(const SnapshotContext& ctx, const verify::Rule& rule,
   plan.subjects.push_back({b, gb, {}});
   plan.legend.push_back({render::ToRgb(kBodyA), a});
   plan.legend.push_back({render::ToRgb(kBodyB), b});
-  const double marker = std::max(0.008, plan.radius_m * 0.025);
+  const double marker = std::max(0.003, plan.radius_m * 0.02);
   plan.overlays.push_back(MakeOverlay("contact", kMarker, marker, {point}, false));
   plan.legend.push_back({render::ToRgb(kMarker), contact ? "deepest contact point" : "gap"});
   if (contact && contact->depth_m > 0.0) {
@@ -139,7 +139,7 @@ bool PlanCollision(const SnapshotContext& ctx, const verify::Rule& rule,
     const Eigen::Vector3d dir =
         normal ? *normal : (NearestCentre(d, ga, point) - point).normalized();
     render::Overlay bar =
-        MakeOverlay("depth", kDepth, marker * 0.5, {point, point + contact->depth_m * dir}, true);
+        MakeOverlay("depth", kDepth, marker * 0.35, {point, point + contact->depth_m * dir}, true);
     bar.arrow_head = true;
     plan.overlays.push_back(std::move(bar));
     plan.legend.push_back(
