@@ -103,8 +103,9 @@ int WriteOverview(const VerifySession& vs, const verify::Verifier& v, const veri
                 Plural(report.errors, "error", "errors") + ", " +
                 Plural(report.warnings, "warning", "warnings");
   title.line2 = "scene " + report.scene_name + " · " +
-                Plural(report.stitches, "stitch", "stitches") + " · " +
-                fs::path(report.program_file).filename().string();
+                (report.stitches > 0 ? Plural(report.stitches, "stitch", "stitches")
+                                     : Plural(report.moves, "move", "moves")) +
+                " · " + fs::path(report.program_file).filename().string();
   title.accent = report.errors == 0 ? kPassAccent : kErrorAccent;
   std::vector<render::LegendEntry> legend;
   for (const auto& set : req.point_sets) {
