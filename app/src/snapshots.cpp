@@ -37,6 +37,8 @@ std::string LegendText(const std::string& label) {
   if (label == "stitch") return "stitch, clean";
   if (label == "stitch_warning") return "stitch with a warning";
   if (label == "stitch_error") return "stitch with an error";
+  if (label == "finding_warning") return "tool point of a warning";
+  if (label == "finding_error") return "tool point of an error";
   if (label == "afp_laid") return "laid tows (course edges)";
   if (label == "afp_gap") return "gap between courses";
   if (label == "afp_overlap") return "overlap of courses";
@@ -76,6 +78,20 @@ RenderRequest OverviewRequest(const VerifySession& vs, const verify::Verifier& v
     auto& set = sets[std::min<int>(m.severity, 2)];
     if (set.points_part_mm.size() < kMaxPerSet)
       set.points_part_mm.push_back(m.position_mm.cast<double>());
+  }
+  // No stitches (fibre placement): the places of the findings, by severity.
+  if (marks.empty()) {
+    sets[1].label = "finding_warning";
+    sets[2].label = "finding_error";
+    for (const auto& rule : v.Rules()) {
+      for (const verify::Finding& f : rule->Summary().findings) {
+        auto& set = sets[f.severity == verify::FindingSeverity::kError ? 2 : 1];
+        if (f.position_mm && set.points_part_mm.size() < kMaxPerSet) {
+          set.points_part_mm.emplace_back((*f.position_mm)[0], (*f.position_mm)[1],
+                                          (*f.position_mm)[2]);
+        }
+      }
+    }
   }
   for (auto& s : sets) {
     if (!s.points_part_mm.empty()) req.point_sets.push_back(std::move(s));
