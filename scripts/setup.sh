@@ -8,7 +8,7 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config python3 python3-yaml  # yaml: ctest ci_doc
   libmujoco-dev libqhull-dev libeigen3-dev liburdfdom-dev libfcl-dev libosmesa6-dev
   libgtest-dev libgmock-dev libbenchmark-dev libyaml-cpp-dev libcli11-dev
-  nlohmann-json3-dev libpng-dev
+  nlohmann-json3-dev libpng-dev libfreetype-dev fonts-dejavu-core  # snapshot text (render/text.h)
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libocct-data-exchange-dev libtbb-dev  # OpenCASCADE (CAD surfaces); its CMake targets need TBB
   clang libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer and clang's sanitizer runtimes

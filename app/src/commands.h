@@ -5,11 +5,13 @@
 #include <CLI/CLI.hpp>
 #include <Eigen/Geometry>
 #include <array>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "cli_common.h"
+#include "stitchsim/render/renderer.h"
 #include "stitchsim/sim/kinematics.h"
 #include "stitchsim/trace/trace_file.h"
 #include "stitchsim/verify/report.h"
@@ -75,6 +77,8 @@ struct RenderRequest {
     bool polyline = false;  ///< connect the points (else one sphere each)
   };
   std::vector<PointSet> point_sets;
+  /// Applied to the picture before it is written (snapshots: title bar and legend).
+  std::function<void(render::Image&)> decorate;
 };
 int RunRenderScene(const LoadedScene& ls, const RenderRequest& req);
 

@@ -270,7 +270,8 @@ int RunRenderScene(const LoadedScene& ls, const RenderRequest& req) {
   for (std::size_t i = 0; i < overlays.size(); ++i) {
     overlays[i].radius_m = std::max(overlays[i].radius_m, min_radius) * radius_scale[i];
   }
-  const render::Image img = renderer->Render(data.get(), view, overlays);
+  render::Image img = renderer->Render(data.get(), view, overlays);
+  if (req.decorate) req.decorate(img);
   if (std::string err = render::WritePng(req.output, img); !err.empty()) {
     PrintError("io-write", err);
     return kExitBadInput;

@@ -18,6 +18,7 @@
 #include "commands.h"
 #include "html_report.h"
 #include "pose_track.h"
+#include "snapshots.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/common/progress.h"
 #include "stitchsim/geom/rotation.h"
@@ -56,126 +57,10 @@ struct VerifyArgs {
   int warm_lines = 128;
 };
 
-// Colours by verdict.
-constexpr std::array<float, 4> kClean = {0.1f, 0.85f, 0.2f, 1.0f};
-constexpr std::array<float, 4> kWarn = {1.0f, 0.65f, 0.0f, 1.0f};
-constexpr std::array<float, 4> kError = {0.95f, 0.05f, 0.05f, 1.0f};
-
-// Overview: every stitch coloured by its verdict (clean stitches thinned to keep the
-// picture within the renderer's geometry budget; flagged ones all drawn).
-// Laid tows in blue, gaps in red, overlaps in magenta.
-std::array<float, 4> DrawnColour(const std::string& label) {
-  if (label == "afp_gap") return kError;
-  if (label == "afp_overlap") return {0.85f, 0.1f, 0.85f, 1.0f};
-  return {0.15f, 0.45f, 0.95f, 1.0f};
-}
-
-int WriteOverview(const LoadedScene& ls, const verify::Verifier& v, const std::string& dir,
-                  const sim::JointVector& joints, const Eigen::Isometry3d& tool_world) {
-  RenderRequest req;
-  req.output = (std::filesystem::path(dir) / "overview.png").string();
-  req.view = "part";
-  req.joints = joints;
-  req.tool_world_m = tool_world;
-  RenderRequest::PointSet sets[3];
-  sets[0].label = "stitch";
-  sets[0].rgba = kClean;
-  sets[1].label = "stitch_warning";
-  sets[1].rgba = kWarn;
-  sets[2].label = "stitch_error";
-  sets[2].rgba = kError;
-  const auto& marks = v.StitchMarks();
-  // Each drawn point costs the software renderer ~100 KB: at most kMaxPerSet per verdict.
-  constexpr std::size_t kMaxPerSet = 1000;
-  const std::size_t stride = std::max<std::size_t>(1, marks.size() / kMaxPerSet);
-  for (std::size_t i = 0; i < marks.size(); ++i) {
-    const auto& m = marks[i];
-    if (m.severity == 0 && i % stride != 0) continue;
-    auto& set = sets[std::min<int>(m.severity, 2)];
-    if (set.points_part_mm.size() < kMaxPerSet)
-      set.points_part_mm.push_back(m.position_mm.cast<double>());
-  }
-  for (auto& s : sets) {
-    if (!s.points_part_mm.empty()) req.point_sets.push_back(std::move(s));
-  }
-  // What the rules draw (AFP: the laid courses' edges, gaps and overlaps).
-  for (const auto& rule : v.Rules()) {
-    for (auto& drawn : rule->Drawings()) {
-      if (drawn.points_mm.empty()) continue;
-      RenderRequest::PointSet set;
-      set.rgba = DrawnColour(drawn.label);
-      set.radius_scale = drawn.label == "afp_laid" ? 0.5 : 1.0;
-      set.label = std::move(drawn.label);
-      set.points_part_mm = std::move(drawn.points_mm);
-      req.point_sets.push_back(std::move(set));
-    }
-  }
-  if (req.point_sets.empty()) return kExitOk;
-  return RunRenderScene(ls, req);
-}
-
-// Close-up of the head at a rule's worst sample, the offending stitch highlighted.
-int WriteCloseUp(const LoadedScene& ls, const sim::CellSetup& cell, const verify::Rule& rule,
-                 const std::string& dir) {
-  const auto& s = rule.WorstSample();
-  if (!s) return kExitOk;
-  RenderRequest req;
-  req.output = (std::filesystem::path(dir) / (rule.Summary().id + ".png")).string();
-  req.view = "head";
-  req.width = 1024;
-  req.height = 768;
-  req.joints = s->has_joints ? s->joints : SolveStartPose(ls, s->tool_part).joints;
-  req.tool_world_m = sim::PartPoseWorld(cell, req.joints[sim::kRotator]) * [&] {
-    Eigen::Isometry3d t = s->tool_part;
-    t.translation() /= 1000.0;
-    return t;
-  }();
-  // The offending stitch: a red ring on the preform around the tool point (the presser
-  // foot hides the stitch itself) and a red dot at the tool point.
-  const Eigen::Vector3d centre = s->tool_part.translation();
-  const Eigen::Vector3d up = s->tool_part.linear().col(2);
-  const Eigen::Vector3d ex = s->tool_part.linear().col(0), ey = s->tool_part.linear().col(1);
-  RenderRequest::PointSet ring;
-  ring.label = "stitch_error";
-  ring.rgba = kError;
-  ring.polyline = true;
-  for (int k = 0; k <= 48; ++k) {
-    const double a = 2 * 3.14159265358979 * k / 48;
-    ring.points_part_mm.push_back(centre + (ls.scene->preform_thickness_mm + 1.0) * up +
-                                  70.0 * (std::cos(a) * ex + std::sin(a) * ey));
-  }
-  req.point_sets.push_back(std::move(ring));
-  RenderRequest::PointSet hit;
-  hit.label = "stitch_error";
-  hit.rgba = kError;
-  hit.radius_scale = 2.0;
-  hit.points_part_mm.push_back(centre);
-  req.point_sets.push_back(std::move(hit));
-  return RunRenderScene(ls, req);
-}
-
-// The snapshots: the AFP coverage maps, the overview, a close-up per rule with errors.
-int WriteSnapshots(const LoadedScene& ls, const sim::CellSetup& cell,
-                   const verify::Verifier& verifier, const std::string& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) {
-    PrintError("io-write", "cannot create snapshot folder " + dir + ": " + ec.message());
-    return kExitBadInput;
-  }
-  if (WriteAfpCoverageSnapshots(verifier, dir) != kExitOk) return kExitBadInput;
-  // The overview shows the robot clear above the start of the scene's first path.
-  Eigen::Isometry3d approach = PathStartTool(*ls.scene, ls.scene->paths.front());
-  approach.translation() += 400.0 * approach.linear().col(2);
-  const StartPose start = SolveStartPose(ls, approach);
-  if (WriteOverview(ls, verifier, dir, start.joints, start.tool_world_m) != kExitOk) {
-    return kExitBadInput;
-  }
-  for (const auto& rule : verifier.Rules()) {
-    if (rule->Summary().errors == 0) continue;
-    if (WriteCloseUp(ls, cell, *rule, dir) != kExitOk) return kExitBadInput;
-  }
-  return kExitOk;
+// The snapshots: the overview, a close-up per rule with errors, the AFP coverage maps.
+int WriteSnapshots(const VerifySession& vs, const verify::Verifier& verifier,
+                   const verify::Report& report, const std::string& dir) {
+  return WriteSnapshotFolder(vs, verifier, report, dir);
 }
 
 // --html: the snapshots (into --snapshots' folder, or a scratch folder removed afterwards)
@@ -187,7 +72,7 @@ int WriteHtml(const VerifyArgs& a, const VerifySession& vs, const verify::Report
   const fs::path dir =
       scratch ? fs::temp_directory_path() / ("stitchsim-html-" + std::to_string(::getpid()))
               : fs::path(a.snapshots);
-  if (scratch && WriteSnapshots(vs.ls, vs.cell, verifier, dir.string()) != kExitOk) {
+  if (scratch && WriteSnapshots(vs, verifier, report, dir.string()) != kExitOk) {
     return kExitBadInput;
   }
   HtmlInputs in;
@@ -257,7 +142,7 @@ int RunVerify(const VerifyArgs& a) {
   if (rc != kExitOk || !a.shard.empty()) return rc;
   if (WriteReports(run.report, a.report_json, a.junit) != kExitOk) return kExitBadInput;
   if (!a.snapshots.empty() &&
-      WriteSnapshots(run.session->ls, run.session->cell, *run.verifier, a.snapshots) != kExitOk) {
+      WriteSnapshots(*run.session, *run.verifier, run.report, a.snapshots) != kExitOk) {
     return kExitBadInput;
   }
   if (!a.html.empty() &&

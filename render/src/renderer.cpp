@@ -3,6 +3,7 @@
 #include <GL/osmesa.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "stitchsim/render/scene_model.h"
@@ -74,19 +75,52 @@ OffscreenRenderer::~OffscreenRenderer() {
   if (impl_->gl != nullptr) OSMesaDestroyContext(impl_->gl);
 }
 
-void OffscreenRenderer::Draw(mjData* data, const CameraView& camera,
-                             const std::vector<Overlay>& overlays, bool segment) {
+namespace {
+
+bool Contains(const std::vector<int>& v, int x) {
+  return std::find(v.begin(), v.end(), x) != v.end();
+}
+
+}  // namespace
+
+// Recolours, makes see-through or drops the model's geoms (dropped: hidden ones; when
+// segmenting, the see-through ones too). Segmentation ids follow the compacted slots.
+void OffscreenRenderer::ApplyStyle(const DrawStyle& style, bool segment) {
   Impl& im = *impl_;
-  OSMesaMakeCurrent(im.gl, im.framebuffer.data(), GL_UNSIGNED_BYTE, im.width, im.height);
-  im.cam.type = mjCAMERA_FREE;
-  for (int i = 0; i < 3; ++i) im.cam.lookat[i] = camera.lookat_m[i];
-  im.cam.distance = camera.distance_m;
-  im.cam.azimuth = camera.azimuth_deg;
-  im.cam.elevation = camera.elevation_deg;
-  mjv_updateScene(im.model, data, &im.opt, nullptr, &im.cam, mjCAT_ALL, &im.scn);
-  im.model_geom_count = im.scn.ngeom;
-  im.overlay_labels.clear();
+  int kept = 0;
+  for (int i = 0; i < im.scn.ngeom; ++i) {
+    mjvGeom g = im.scn.geoms[i];
+    if (g.objtype == mjOBJ_GEOM) {
+      const bool clear = Contains(style.transparent, g.objid);
+      if (Contains(style.hidden, g.objid) || (segment && clear)) continue;
+      const auto colour = std::find_if(style.colours.begin(), style.colours.end(),
+                                       [&](const GeomColour& c) { return c.geom == g.objid; });
+      if (colour != style.colours.end()) {
+        for (int c = 0; c < 4; ++c) g.rgba[c] = colour->rgba[static_cast<std::size_t>(c)];
+        // See-through, but still segmented (opaque there: drawn in depth order).
+        g.transparent = !segment && g.rgba[3] < 1.0f ? 1 : 0;
+      } else if (style.others) {
+        for (int c = 0; c < 4; ++c) g.rgba[c] = (*style.others)[static_cast<std::size_t>(c)];
+      }
+      if (clear) {
+        g.rgba[3] = style.transparent_alpha;
+        g.transparent = 1;
+      }
+    }
+    g.segid = kept;
+    im.scn.geoms[kept++] = g;
+  }
+  im.scn.ngeom = kept;
+}
+
+void OffscreenRenderer::AddOverlays(const std::vector<Overlay>& overlays, const DrawStyle& style,
+                                    bool segment) {
+  Impl& im = *impl_;
   for (const Overlay& o : overlays) {
+    if (segment && std::find(style.unsegmented_overlays.begin(), style.unsegmented_overlays.end(),
+                             o.label) != style.unsegmented_overlays.end()) {
+      continue;
+    }
     auto add = [&](int type, const Eigen::Vector3d& a, const Eigen::Vector3d* b) {
       if (im.scn.ngeom >= im.scn.maxgeom) return;
       mjvGeom* g = im.scn.geoms + im.scn.ngeom;
@@ -94,8 +128,9 @@ void OffscreenRenderer::Draw(mjData* data, const CameraView& camera,
       const mjtNum pos[3] = {a.x(), a.y(), a.z()};
       mjv_initGeom(g, type, size, pos, nullptr, o.rgba);
       if (b != nullptr) {
-        mjv_makeConnector(g, mjGEOM_CAPSULE, o.radius_m, a.x(), a.y(), a.z(), b->x(), b->y(),
-                          b->z());
+        const bool arrow = type == mjGEOM_ARROW;
+        mjv_makeConnector(g, type, arrow ? 2.0 * o.radius_m : o.radius_m, a.x(), a.y(), a.z(),
+                          b->x(), b->y(), b->z());
       }
       g->category = mjCAT_DECOR;
       g->emission = 0.35f;
@@ -106,12 +141,31 @@ void OffscreenRenderer::Draw(mjData* data, const CameraView& camera,
     if (o.polyline) {
       for (std::size_t i = 0; i + 1 < o.points_m.size(); ++i) {
         if ((o.points_m[i + 1] - o.points_m[i]).norm() < 1e-9) continue;
-        add(mjGEOM_CAPSULE, o.points_m[i], &o.points_m[i + 1]);
+        const bool last = i + 2 == o.points_m.size();
+        add(o.arrow_head && last ? mjGEOM_ARROW : mjGEOM_CAPSULE, o.points_m[i],
+            &o.points_m[i + 1]);
       }
     } else {
       for (const auto& p : o.points_m) add(mjGEOM_SPHERE, p, nullptr);
     }
   }
+}
+
+void OffscreenRenderer::Draw(mjData* data, const CameraView& camera,
+                             const std::vector<Overlay>& overlays, const DrawStyle& style,
+                             bool segment) {
+  Impl& im = *impl_;
+  OSMesaMakeCurrent(im.gl, im.framebuffer.data(), GL_UNSIGNED_BYTE, im.width, im.height);
+  im.cam.type = mjCAMERA_FREE;
+  for (int i = 0; i < 3; ++i) im.cam.lookat[i] = camera.lookat_m[i];
+  im.cam.distance = camera.distance_m;
+  im.cam.azimuth = camera.azimuth_deg;
+  im.cam.elevation = camera.elevation_deg;
+  mjv_updateScene(im.model, data, &im.opt, nullptr, &im.cam, mjCAT_ALL, &im.scn);
+  ApplyStyle(style, segment);
+  im.model_geom_count = im.scn.ngeom;
+  im.overlay_labels.clear();
+  AddOverlays(overlays, style, segment);
   im.scn.flags[mjRND_SEGMENT] = segment ? 1 : 0;
   im.scn.flags[mjRND_IDCOLOR] = segment ? 1 : 0;
   im.scn.flags[mjRND_SHADOW] = segment ? 0 : 1;
@@ -121,8 +175,8 @@ void OffscreenRenderer::Draw(mjData* data, const CameraView& camera,
 }
 
 Image OffscreenRenderer::Render(mjData* data, const CameraView& camera,
-                                const std::vector<Overlay>& overlays) {
-  Draw(data, camera, overlays, false);
+                                const std::vector<Overlay>& overlays, const DrawStyle& style) {
+  Draw(data, camera, overlays, style, false);
   Impl& im = *impl_;
   Image img;
   img.width = im.width;
@@ -140,8 +194,9 @@ Image OffscreenRenderer::Render(mjData* data, const CameraView& camera,
 }
 
 Segmentation OffscreenRenderer::RenderSegmentation(mjData* data, const CameraView& camera,
-                                                   const std::vector<Overlay>& overlays) {
-  Draw(data, camera, overlays, true);
+                                                   const std::vector<Overlay>& overlays,
+                                                   const DrawStyle& style) {
+  Draw(data, camera, overlays, style, true);
   Impl& im = *impl_;
   std::vector<unsigned char> raw(static_cast<std::size_t>(im.width) * im.height * 3);
   const mjrRect viewport = {0, 0, im.width, im.height};
@@ -157,7 +212,9 @@ Segmentation OffscreenRenderer::RenderSegmentation(mjData* data, const CameraVie
       seg.names.push_back("overlay:" +
                           im.overlay_labels[static_cast<std::size_t>(i - im.model_geom_count)]);
       seg.body_names.emplace_back();
+      seg.geoms.push_back(-1);
     } else if (g.objtype == mjOBJ_GEOM) {
+      seg.geoms.push_back(g.objid);
       const char* n = mj_id2name(im.model, mjOBJ_GEOM, g.objid);
       seg.names.emplace_back(n != nullptr ? n : "");
       const char* b = mj_id2name(im.model, mjOBJ_BODY, im.model->geom_bodyid[g.objid]);
@@ -165,6 +222,7 @@ Segmentation OffscreenRenderer::RenderSegmentation(mjData* data, const CameraVie
     } else {
       seg.names.emplace_back("decor");
       seg.body_names.emplace_back();
+      seg.geoms.push_back(-1);
     }
   }
   for (int y = 0; y < im.height; ++y) {
@@ -178,6 +236,25 @@ Segmentation OffscreenRenderer::RenderSegmentation(mjData* data, const CameraVie
     }
   }
   return seg;
+}
+
+CameraView LookAlong(const Eigen::Vector3d& lookat_m, const Eigen::Vector3d& forward,
+                     double distance_m) {
+  // MuJoCo's free camera looks along (cos el cos az, cos el sin az, sin el).
+  const Eigen::Vector3d f = forward.normalized();
+  CameraView v;
+  v.lookat_m = lookat_m;
+  v.distance_m = distance_m;
+  constexpr double kDeg = 180.0 / 3.14159265358979323846;
+  v.azimuth_deg = std::atan2(f.y(), f.x()) * kDeg;
+  v.elevation_deg = std::clamp(std::asin(std::clamp(f.z(), -1.0, 1.0)) * kDeg, -89.0, 89.0);
+  return v;
+}
+
+Eigen::Vector3d ViewDirection(const CameraView& view) {
+  constexpr double kRad = 3.14159265358979323846 / 180.0;
+  const double az = view.azimuth_deg * kRad, el = view.elevation_deg * kRad;
+  return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
 }
 
 }  // namespace stitchsim::render

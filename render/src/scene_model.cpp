@@ -126,6 +126,29 @@ std::string ComposeSceneMjcf(const scene::Scene& scene, DiagnosticSink& sink) {
   return text;
 }
 
+std::vector<int> GeomsOfBody(const mjModel& model, int body_id) {
+  std::vector<int> out;
+  for (int g = 0; g < model.ngeom; ++g) {
+    if (model.geom_bodyid[g] == body_id) out.push_back(g);
+  }
+  return out;
+}
+
+std::vector<int> GeomsOfCollisionBody(const mjModel& model, const std::string& body) {
+  auto geom = [&](const std::string& name) -> std::vector<int> {
+    const int id = mj_name2id(&model, mjOBJ_GEOM, name.c_str());
+    if (id < 0) return {};
+    return {id};
+  };
+  if (body.rfind("head:", 0) == 0) return geom(body.substr(5));
+  if (body == "mold") return geom(kMoldGeom);
+  if (body == "preform") return geom(kPreformGeom);
+  if (body.rfind("constraint:", 0) == 0) return geom(kConstraintGeomPrefix + body.substr(11));
+  const int id = mj_name2id(&model, mjOBJ_BODY, body.c_str());
+  if (id > 0) return GeomsOfBody(model, id);
+  return geom(body);
+}
+
 MjModelPtr LoadSceneModel(const scene::Scene& scene, DiagnosticSink& sink) {
   const std::string xml = ComposeSceneMjcf(scene, sink);
   if (xml.empty()) return nullptr;

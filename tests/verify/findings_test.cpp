@@ -255,5 +255,53 @@ TEST(Findings, NoWorstBeyondALimitWithoutFindingsOnAnyBundledScene) {
   std::printf("%d programmes verified, %d with errors\n", programmes, failing);
 }
 
+// The needle rules keep, beside their worst sample, the tool pose the needles entered with in
+// that window (the snapshot's drift arrows start there); other rules keep none. A hand-made
+// trace: two windows, the second turns the head 20 deg about z with the needles in.
+TEST(Findings, NeedleRulesKeepTheEntryPoseOfTheirWorstWindow) {
+  const Loaded l = Load("flat_straight");
+  const process::ProcessModel model = process::MakeProcessModel(*l.scene, 5.0);
+  const trace::CellDescription cell = sim::DescribeCell(*l.robot, nullptr);
+  Verifier verifier(RuleContext{l.scene.get(), &cell, &model}, false);
+  trace::LineRecord line;
+  line.source_line = 1;
+  line.stitching = true;
+  verifier.OnLine(line);
+  auto sample = [&](double x_mm, double turn_deg, bool in, trace::SampleEvent e, long stitch) {
+    trace::TraceSample s;
+    s.source_line = 1;
+    s.stitch = stitch;
+    s.event = e;
+    s.needles_in = in;
+    s.drive_advancing = true;
+    s.tool_part = Eigen::Translation3d(x_mm, 0, 0) *
+                  Eigen::AngleAxisd(turn_deg * 3.14159265358979 / 180.0, Eigen::Vector3d::UnitZ());
+    verifier.OnSample(s);
+  };
+  sample(0, 0, true, trace::SampleEvent::kNeedleEntry, 1);  // a clean window
+  sample(0, 0, false, trace::SampleEvent::kNeedleExit, 1);
+  sample(5, 0, true, trace::SampleEvent::kNeedleEntry, 2);  // entry at x = 5 mm
+  sample(5, 20, true, trace::SampleEvent::kNone, 2);
+  sample(5, 20, false, trace::SampleEvent::kNeedleExit, 2);
+  Report report;
+  verifier.Finish(report);
+  for (const auto& rule : verifier.Rules()) {
+    if (rule->Summary().id != "needle.rotation_in_preform") continue;
+    ASSERT_GT(rule->Summary().errors, 0);
+    ASSERT_TRUE(rule->WorstSample());
+    ASSERT_TRUE(rule->WorstEntryTool());
+    EXPECT_NEAR(rule->WorstEntryTool()->translation().x(), 5.0, 1e-12);
+    EXPECT_LT(Eigen::AngleAxisd(rule->WorstEntryTool()->linear()).angle(), 1e-12);
+    EXPECT_NEAR(Eigen::AngleAxisd(rule->WorstSample()->tool_part.linear()).angle() * 180.0 /
+                    3.14159265358979,
+                20.0, 1e-9);
+  }
+  for (const auto& rule : verifier.Rules()) {
+    if (rule->Summary().id.rfind("needle.", 0) != 0) {
+      EXPECT_FALSE(rule->WorstEntryTool()) << rule->Summary().id;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace stitchsim::verify

@@ -13,13 +13,22 @@ Rule::Rule(std::string id, std::string description, std::string unit) {
   summary_.unit = std::move(unit);
 }
 
+void Rule::SetWorstSample(const trace::TraceSample& sample) {
+  worst_sample_ = sample;
+  if (window_entry_ != nullptr) {
+    worst_entry_tool_ = *window_entry_;
+  } else {
+    worst_entry_tool_.reset();
+  }
+}
+
 void Rule::Observe(double value, int line, long stitch, const trace::TraceSample* sample) {
   series_.Add(line, value);
   if (!summary_.worst_value || value > *summary_.worst_value) {
     summary_.worst_value = value;
     summary_.worst_line = line;
     summary_.worst_stitch = stitch;
-    if (sample != nullptr) worst_sample_ = *sample;
+    if (sample != nullptr) SetWorstSample(*sample);
   }
 }
 
@@ -57,7 +66,7 @@ void Rule::Record(FindingSeverity severity, double value, double limit, int line
   // The close-up goes to the first error (or a warning if there is no error).
   const bool first_error =
       severity == FindingSeverity::kError && !was_error && summary_.errors == 1;
-  if (sample != nullptr && (first_error || !worst_sample_)) worst_sample_ = *sample;
+  if (sample != nullptr && (first_error || !worst_sample_)) SetWorstSample(*sample);
   Finding f;
   f.rule = summary_.id;
   f.severity = severity;
@@ -121,7 +130,7 @@ std::optional<FindingSeverity> Rule::Classify(double value, int line, long stitc
     sev = FindingSeverity::kWarning;
   }
   // Keep the snapshot at the worst offending sample.
-  if (sample != nullptr && new_worst && (sev || !worst_sample_)) worst_sample_ = *sample;
+  if (sample != nullptr && new_worst && (sev || !worst_sample_)) SetWorstSample(*sample);
   return sev;
 }
 
@@ -216,6 +225,7 @@ void Rule::Absorb(const Rule& later) {
   const bool has_error = summary_.errors - later.summary_.errors > 0;
   if (!has_error && later.worst_sample_ && (later.summary_.errors > 0 || !worst_sample_)) {
     worst_sample_ = later.worst_sample_;
+    worst_entry_tool_ = later.worst_entry_tool_;
   }
   saw_input_ = saw_input_ || later.saw_input_;
   series_.Absorb(later.series_);
@@ -234,6 +244,7 @@ void Rule::ResetAccumulators() {
   summary_.findings.clear();
   summary_.truncated = false;
   worst_sample_.reset();
+  worst_entry_tool_.reset();
   recent_lines_.clear();
   saw_input_ = false;
   series_.Clear();

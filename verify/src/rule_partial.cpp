@@ -204,6 +204,7 @@ bool Rule::LoadPartial(const json& j, std::string& error) {
   saw_input_ = saw_input;
   series_ = std::move(series);
   worst_sample_.reset();
+  worst_entry_tool_.reset();
   return true;
 }
 

@@ -110,9 +110,14 @@ void Verifier::CloseWindow() {
   w.exit_line = last_in_sample_.source_line;
   w.metrics = window_.Metrics();
   w.exit_sample = last_in_sample_;
+  w.entry_tool = window_.Entry();
   window_ = process::NeedleWindow(*ctx_.process);
   const auto [e0, w0] = Totals(rules_);
-  for (auto& r : rules_) r->OnWindow(w);
+  for (auto& r : rules_) {
+    r->window_entry_ = &w.entry_tool;
+    r->OnWindow(w);
+    r->window_entry_ = nullptr;
+  }
   MarkStitch(w.stitch, static_cast<std::size_t>(e0), static_cast<std::size_t>(w0));
 }
 

@@ -62,13 +62,15 @@ class NeedleWindow {
   void Update(const Eigen::Isometry3d& tool, const Eigen::Isometry3d* walk_reference = nullptr);
   bool Active() const { return active_; }
   const WindowMetrics& Metrics() const { return metrics_; }
+  /// The tool pose the needles entered with (part frame, mm).
+  const Eigen::Isometry3d& Entry() const { return entry_; }
 
  private:
   const ProcessModel* model_;
   bool active_ = false;
   Eigen::Isometry3d entry_ = Eigen::Isometry3d::Identity();
   Eigen::Vector3d entry_reference_ = Eigen::Vector3d::Zero();  ///< walk reference at entry
-  std::vector<std::vector<Eigen::Vector3d>> entry_points_;  // per needle, per shaft point
+  std::vector<std::vector<Eigen::Vector3d>> entry_points_;     // per needle, per shaft point
   WindowMetrics metrics_;
 };
 

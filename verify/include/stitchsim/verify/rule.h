@@ -25,6 +25,8 @@ struct WindowRecord {
   int exit_line = 0;   ///< line where they left
   process::WindowMetrics metrics;
   trace::TraceSample exit_sample;  ///< the last sample of the window (for snapshots)
+  /// Tool pose where the needles entered (part frame, mm; for the snapshot's drift arrows).
+  Eigen::Isometry3d entry_tool = Eigen::Isometry3d::Identity();
 };
 
 /// The needles pierce the preform: where, and how the head stood.
@@ -71,6 +73,9 @@ class Rule {
   const RuleSummary& Summary() const { return summary_; }
   /// The trace sample at the worst finding, for the close-up snapshot.
   const std::optional<trace::TraceSample>& WorstSample() const { return worst_sample_; }
+  /// For a worst sample inside a needle window (needle.* rules): the tool pose where the
+  /// needles entered the preform in that window (part frame, mm); else empty.
+  const std::optional<Eigen::Isometry3d>& WorstEntryTool() const { return worst_entry_tool_; }
   /// The values the rule checked along the programme (its unit, against its own limits), for
   /// plots; an accumulator (merged, reset, saved with the partial).
   const ValueSeries& Series() const { return series_; }
@@ -168,6 +173,9 @@ class Rule {
     FindingSeverity severity = FindingSeverity::kWarning;
     std::size_t index = static_cast<std::size_t>(-1);
   };
+  /// worst_sample_ = `sample`, with the entry pose of the window being judged (if any).
+  void SetWorstSample(const trace::TraceSample& sample);
+
   /// Lines recorded this many distinct lines ago or fewer are one finding with a new one.
   static constexpr std::size_t kRecentFindingLines = 64;
 
@@ -183,6 +191,9 @@ class Rule {
   std::deque<LineFinding> recent_lines_;
   /// Given a line or sample since the last reset (set by the verifier).
   bool saw_input_ = false;
+  /// Set by the verifier while OnWindow runs: the window's entry tool pose (part frame, mm).
+  const Eigen::Isometry3d* window_entry_ = nullptr;
+  std::optional<Eigen::Isometry3d> worst_entry_tool_;  ///< see WorstEntryTool
 };
 
 /// Every rule, in report order, with limits from `ctx`.

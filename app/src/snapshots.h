@@ -1,0 +1,20 @@
+#pragma once
+// `verify --snapshots DIR`: the overview (always), a close-up per rule with errors chosen by
+// the rule's family (snapshot_families.h), the AFP coverage maps, each picture with a title
+// bar and a colour legend burned in, and snapshots.json saying what each picture shows
+// (docs/report-format.md, "Snapshots").
+
+#include <string>
+
+#include "stitchsim/verify/report.h"
+#include "stitchsim/verify/verifier.h"
+#include "verify_session.h"
+
+namespace stitchsim::app {
+
+/// Writes the snapshot folder for a finished run; kExitOk, or kExitBadInput (printed) when a
+/// file cannot be written, a font is missing (io-missing-file) or the scene cannot be drawn.
+int WriteSnapshotFolder(const VerifySession& vs, const verify::Verifier& verifier,
+                        const verify::Report& report, const std::string& dir);
+
+}  // namespace stitchsim::app
