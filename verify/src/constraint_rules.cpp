@@ -62,7 +62,7 @@ class ConstraintCrossingRule final : public Rule {
                       "a move with the needles down (stitching on, head not retracted) crosses "
                       "the footprint of '%s' (margin %.3g mm)",
                       b.name.c_str(), margin_mm_);
-        Record(FindingSeverity::kError, depth, 0.0, l.source_line, 0, b.name, msg, nullptr);
+        Record(FindingSeverity::kError, depth, 0.0, l.source_line, 0, b.name, msg, nullptr, &e);
         return;
       }
     }

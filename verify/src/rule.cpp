@@ -46,8 +46,8 @@ Rule::LineFinding* Rule::RecentFinding(int line) {
 }
 
 void Rule::Record(FindingSeverity severity, double value, double limit, int line, long stitch,
-                  const std::string& subject, std::string message,
-                  const trace::TraceSample* sample) {
+                  const std::string& subject, std::string message, const trace::TraceSample* sample,
+                  const Eigen::Vector3d* position) {
   // One finding per line: find the line's finding, if it was reported already (kept or not).
   LineFinding* seen = RecentFinding(line);
   bool was_error = false;
@@ -77,14 +77,20 @@ void Rule::Record(FindingSeverity severity, double value, double limit, int line
   f.unit = summary_.unit;
   f.subject = subject;
   f.message = std::move(message);
-  if (sample != nullptr) {
-    const Eigen::Vector3d& p = sample->tool_part.translation();
+  if (position != nullptr || sample != nullptr) {
+    const Eigen::Vector3d& p = position != nullptr ? *position : sample->tool_part.translation();
     f.position_mm = std::array<double, 3>{p.x(), p.y(), p.z()};
   }
   if (seen != nullptr) {
     const std::size_t index = seen->index;
-    if (index < summary_.findings.size() && Worse(severity, value, limit, summary_.findings[index]))
-      summary_.findings[index] = std::move(f);
+    if (index >= summary_.findings.size()) return;
+    Finding& kept = summary_.findings[index];
+    if (Worse(severity, value, limit, kept)) {
+      if (!f.position_mm) f.position_mm = kept.position_mm;
+      kept = std::move(f);
+    } else if (!kept.position_mm) {
+      kept.position_mm = f.position_mm;
+    }
     return;
   }
   LineFinding entry{line, severity, static_cast<std::size_t>(-1)};

@@ -306,8 +306,9 @@ class SyncRule final : public Rule {
     }
     Observe(worst->first, l.source_line, 0, nullptr);
     if (worst->first > tol) {
+      const Eigen::Vector3d end = l.to.translation();  // where the line ends
       Record(FindingSeverity::kError, worst->first, tol, l.source_line, 0, worst->second, message,
-             nullptr);
+             nullptr, &end);
     }
   }
 

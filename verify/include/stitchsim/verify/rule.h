@@ -142,8 +142,12 @@ class Rule {
   /// Records a finding directly (for yes/no rules). Findings are one per line: a second
   /// finding on a line already reported merges into it (the worse one's value, subject and
   /// message stay; error beats warning, then the larger value over its limit).
+  /// The finding's position_mm is `position` (part frame, mm) when given, else the sample's tool
+  /// point; a line's finding kept from an earlier record takes the later one's position when it
+  /// had none.
   void Record(FindingSeverity severity, double value, double limit, int line, long stitch,
-              const std::string& subject, std::string message, const trace::TraceSample* sample);
+              const std::string& subject, std::string message, const trace::TraceSample* sample,
+              const Eigen::Vector3d* position = nullptr);
   /// Adds a value to the plotted series only (rules that track their worst themselves).
   void Plot(int line, double value) { series_.Add(line, value); }
   /// Tracks the worst value without a finding (and plots it).
