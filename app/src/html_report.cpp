@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "html_assets.h"
+#include "snapshots.h"
 #include "stitchsim/common/base64.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/render/cell_export.h"
@@ -130,10 +131,7 @@ json DrawingsJson(const verify::Verifier& v) {
         pos.insert(pos.end(), {static_cast<float>(p.x()), static_cast<float>(p.y()),
                                static_cast<float>(p.z())});
       }
-      const std::array<float, 4> rgba = d.label == "afp_gap" ? std::array{0.95f, 0.05f, 0.05f, 1.0f}
-                                        : d.label == "afp_overlap"
-                                            ? std::array{0.85f, 0.1f, 0.85f, 1.0f}
-                                            : std::array{0.15f, 0.45f, 0.95f, 1.0f};
+      const std::array<float, 4> rgba = DrawnColour(d.label);
       out.push_back(json{{"label", d.label}, {"rgba", rgba}, {"positions", Base64Of(pos)}});
     }
   }

@@ -26,13 +26,6 @@ constexpr std::array<float, 4> kError = {0.95f, 0.05f, 0.05f, 1.0f};
 constexpr render::Rgb kErrorAccent = {200, 30, 30};
 constexpr render::Rgb kPassAccent = {40, 160, 60};
 
-// What the rules draw on the overview: laid tows in blue, gaps in red, overlaps in magenta.
-std::array<float, 4> DrawnColour(const std::string& label) {
-  if (label == "afp_gap") return kError;
-  if (label == "afp_overlap") return {0.85f, 0.1f, 0.85f, 1.0f};
-  return {0.15f, 0.45f, 0.95f, 1.0f};
-}
-
 std::string LegendText(const std::string& label) {
   if (label == "stitch") return "stitch, clean";
   if (label == "stitch_warning") return "stitch with a warning";
@@ -233,6 +226,12 @@ int WriteCloseUps(const VerifySession& vs, const verify::Verifier& v, const veri
 }
 
 }  // namespace
+
+std::array<float, 4> DrawnColour(const std::string& label) {
+  if (label == "afp_gap") return kError;
+  if (label == "afp_overlap") return {0.85f, 0.1f, 0.85f, 1.0f};
+  return {0.15f, 0.45f, 0.95f, 1.0f};
+}
 
 int WriteSnapshotFolder(const VerifySession& vs, const verify::Verifier& verifier,
                         const verify::Report& report, const std::string& folder) {

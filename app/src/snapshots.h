@@ -4,6 +4,7 @@
 // bar and a colour legend burned in, and snapshots.json saying what each picture shows
 // (docs/report-format.md, "Snapshots").
 
+#include <array>
 #include <string>
 
 #include "stitchsim/verify/report.h"
@@ -14,6 +15,10 @@ namespace stitchsim::app {
 
 /// Writes the snapshot folder for a finished run; kExitOk, or kExitBadInput (printed) when a
 /// file cannot be written, a font is missing (io-missing-file) or the scene cannot be drawn.
+/// The colour of what a rule draws (verify::DrawnPoints label), on the overview and in the
+/// HTML report: laid tows blue, gaps red, overlaps magenta.
+std::array<float, 4> DrawnColour(const std::string& label);
+
 int WriteSnapshotFolder(const VerifySession& vs, const verify::Verifier& verifier,
                         const verify::Report& report, const std::string& dir);
 

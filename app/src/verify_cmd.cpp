@@ -57,12 +57,6 @@ struct VerifyArgs {
   int warm_lines = 128;
 };
 
-// The snapshots: the overview, a close-up per rule with errors, the AFP coverage maps.
-int WriteSnapshots(const VerifySession& vs, const verify::Verifier& verifier,
-                   const verify::Report& report, const std::string& dir) {
-  return WriteSnapshotFolder(vs, verifier, report, dir);
-}
-
 // --html: the snapshots (into --snapshots' folder, or a scratch folder removed afterwards)
 // read back, then the page.
 int WriteHtml(const VerifyArgs& a, const VerifySession& vs, const verify::Report& report,
@@ -72,7 +66,7 @@ int WriteHtml(const VerifyArgs& a, const VerifySession& vs, const verify::Report
   const fs::path dir =
       scratch ? fs::temp_directory_path() / ("stitchsim-html-" + std::to_string(::getpid()))
               : fs::path(a.snapshots);
-  if (scratch && WriteSnapshots(vs, verifier, report, dir.string()) != kExitOk) {
+  if (scratch && WriteSnapshotFolder(vs, verifier, report, dir.string()) != kExitOk) {
     return kExitBadInput;
   }
   HtmlInputs in;
@@ -142,7 +136,7 @@ int RunVerify(const VerifyArgs& a) {
   if (rc != kExitOk || !a.shard.empty()) return rc;
   if (WriteReports(run.report, a.report_json, a.junit) != kExitOk) return kExitBadInput;
   if (!a.snapshots.empty() &&
-      WriteSnapshots(*run.session, *run.verifier, run.report, a.snapshots) != kExitOk) {
+      WriteSnapshotFolder(*run.session, *run.verifier, run.report, a.snapshots) != kExitOk) {
     return kExitBadInput;
   }
   if (!a.html.empty() &&
