@@ -186,6 +186,13 @@ TEST(DiffCli, OneStitchMovedOntoAStringerIsThatStitchsNewFindings) {
       EXPECT_EQ(f.at("subject"), "stringer_2");
       EXPECT_EQ(f.at("new").at("severity"), "error");
     }
+    // Line-judged findings sit at the moved line's end: the Y and Z written above, by hand.
+    if (f.at("rule") == "constraint.crossing" || f.at("rule") == "program.sync") {
+      const Json& p = f.at("new").at("position_mm");
+      ASSERT_TRUE(p.is_array()) << f.dump();
+      EXPECT_NEAR(p.at(1).get<double>(), y_in * kIn, 1e-6) << f.dump();
+      EXPECT_NEAR(p.at(2).get<double>(), z_in * kIn, 1e-6) << f.dump();
+    }
   }
   EXPECT_EQ(crossings, 1) << d.text;
   // The rules the comment above names, each once.
