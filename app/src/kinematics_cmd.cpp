@@ -12,6 +12,7 @@
 #include "cli_common.h"
 #include "cli_options.h"
 #include "commands.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/dialect.h"
 #include "stitchsim/program/tool_pose.h"
@@ -22,8 +23,6 @@ namespace stitchsim::app {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kRadToDeg = 180.0 / kPi;
-constexpr double kDegToRad = kPi / 180.0;
 
 // Keys in the order written: status first, details after.
 using json = nlohmann::ordered_json;

@@ -21,6 +21,7 @@
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/program/dialect.h"
 #ifdef STITCHSIM_HAVE_COLLISION
+#include "stitchsim/common/units.h"
 #include "stitchsim/sim/collision.h"
 #endif
 
@@ -107,8 +108,6 @@ int RunPlanStitch(const PlanStitchArgs& a) {
 }
 
 // ---- plan afp ------------------------------------------------------------------------------
-
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 struct PlanAfpArgs {
   std::string scene;

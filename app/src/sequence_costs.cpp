@@ -3,12 +3,12 @@
 
 #include <cmath>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/sim/kinematics.h"
 
 namespace stitchsim::app {
 namespace {
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 // A backward end the cell cannot reach sits this far away in every coordinate.
 constexpr double kUnreachableCoord = 1e7;
 

@@ -5,13 +5,12 @@
 #include <cstdio>
 #include <sstream>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/program/dialect.h"
 #include "stitchsim/program/reader.h"
 
 namespace stitchsim::planner {
 namespace {
-
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 // Programme line -> index of the course point its move ends at (moves in order = points).
 std::map<int, std::size_t> PointLines(const std::string& text) {

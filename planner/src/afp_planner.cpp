@@ -7,6 +7,7 @@
 
 #include "detail/program_text.h"
 #include "stitchsim/common/limits.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/block.h"
 #include "stitchsim/program/writer.h"
@@ -15,7 +16,6 @@ namespace stitchsim::planner {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kRadToDeg = 180.0 / kPi;
 // |q_x| below this counts as zero: the head axis lies in the y-z plane (seed eq. 12).
 constexpr double kZeroQx = 1e-12;
 

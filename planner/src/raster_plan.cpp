@@ -13,6 +13,8 @@
 namespace stitchsim::planner {
 namespace {
 
+using detail::Num;
+
 // Free u-intervals of the row at v inside [u0, u1].
 std::vector<std::pair<double, double>> FreeIntervals(const std::vector<scene::Footprint>& fps,
                                                      double v, double u0, double u1) {
@@ -76,12 +78,6 @@ double FlightLift(const geom::Surface& s, const Eigen::Vector3d& a, const Eigen:
     lift += deficit + 1.0;
   }
   return lift;
-}
-
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.6f", v);
-  return buf;
 }
 
 // The rows' v. A height field: v0 + k * spacing (the spacing in y). Otherwise the rows are

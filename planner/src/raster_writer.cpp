@@ -12,15 +12,11 @@
 namespace stitchsim::planner {
 namespace {
 
+using detail::Num;
+
 // Traverse speed and retract / lower time for the time estimate (the head spec has none).
 constexpr double kTraverseMmPerMin = 20000.0;
 constexpr double kRetractLowerS = 0.5;
-
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.6f", v);
-  return buf;
-}
 
 class RasterWriter {
  public:

@@ -3,11 +3,14 @@
 // ends, the cost of one move between two visits.
 #include <cassert>
 #include <chrono>
+#include <limits>
 #include <vector>
 
 #include "stitchsim/planner/sequence_solver.h"
 
 namespace stitchsim::planner::detail {
+
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Row `row` of p.points (dim values).
 inline const double* Row(const SequenceProblem& p, int row) {

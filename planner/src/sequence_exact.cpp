@@ -15,7 +15,8 @@ namespace stitchsim::planner {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using detail::kInf;
+
 constexpr std::uint8_t kNoParent = 0xFF;
 
 /// Off-part cost between every pair of nodes (2 course + reversed), row = from.

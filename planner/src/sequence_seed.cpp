@@ -49,10 +49,11 @@ namespace stitchsim::planner {
 
 namespace {
 
+using detail::kInf;
+
 constexpr int kMaxPool = 64;
 constexpr int kWidth = 3;
 constexpr int kListSize = 16;
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 struct Neighbour {
   double cost = 0.0;

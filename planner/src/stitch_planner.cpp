@@ -5,16 +5,13 @@
 
 #include "detail/program_text.h"
 #include "stitchsim/common/limits.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/block.h"
 #include "stitchsim/program/writer.h"
 
 namespace stitchsim::planner {
-namespace {
-
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-
-}  // namespace
+namespace {}  // namespace
 
 std::optional<Mode> ParseMode(std::string_view text) {
   if (text == "coupled") return Mode::kCoupled;

@@ -6,10 +6,10 @@
 #include <span>
 #include <vector>
 
+#include "stitchsim/common/units.h"
+
 namespace stitchsim::process {
 namespace {
-
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 // Point of needle `n` on its axis at tool-frame height z_mm (the preform lies at tool z in
 // [0, thickness], between the stitching surface and the head).

@@ -11,7 +11,7 @@
 namespace stitchsim::scene::detail {
 namespace {
 
-std::string_view Trim(std::string_view s) {
+std::string_view TrimView(std::string_view s) {
   const auto b = s.find_first_not_of(" \t");
   if (b == std::string_view::npos) return {};
   return s.substr(b, s.find_last_not_of(" \t") - b + 1);
@@ -94,13 +94,13 @@ std::optional<double> LimitValue(YamlReader& r, const YAML::Node& node, const Li
     r.Error(node, "type", what + " must be " + std::string(UnitsAccepted(spec.unit)));
     return std::nullopt;
   }
-  const std::string_view text = Trim(node.Scalar());
+  const std::string_view text = TrimView(node.Scalar());
   std::size_t end = text.size();
   while (end > 0 && (std::isalpha(static_cast<unsigned char>(text[end - 1])) ||
                      text[end - 1] == '%' || text[end - 1] == '/')) {
     --end;
   }
-  const std::string_view number = Trim(text.substr(0, end));
+  const std::string_view number = TrimView(text.substr(0, end));
   const std::string_view unit = text.substr(end);
   // Bare numbers (and words such as "nan", "-inf") are read exactly as any other number.
   std::string lower(unit);

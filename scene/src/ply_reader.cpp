@@ -7,12 +7,11 @@
 #include <string_view>
 #include <utility>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/polygon2.h"
 
 namespace stitchsim::scene::detail {
 namespace {
-
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 bool NameOk(const std::string& s) {
   if (s.empty()) return false;

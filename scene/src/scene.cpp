@@ -9,14 +9,13 @@
 #include "ply_reader.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/common/limits.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/geom/stl.h"
 #include "stitchsim/scene/yaml_reader.h"
 
 namespace stitchsim::scene {
 namespace {
-
-constexpr double kDeg = kPi / 180.0;
 
 class SceneLoader {
  public:

@@ -18,7 +18,6 @@
 namespace stitchsim::sim {
 
 using detail::Executor;
-using detail::kDeg;
 using program::Axis;
 
 ExecuteOptions ExecuteOptionsFor(const scene::Scene& scene) {

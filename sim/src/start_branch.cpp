@@ -5,6 +5,7 @@
 #include <istream>
 #include <vector>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/modal_state.h"
 #include "stitchsim/program/reader.h"
@@ -12,8 +13,6 @@
 
 namespace stitchsim::sim::detail {
 namespace {
-
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 using program::Axis;
 

@@ -317,11 +317,13 @@ TEST(CollisionTest, AfpInclineAutoClearsTheSmallConcaveMoldCli) {
 // The broad phase (near lists kept while the motion bound allows, oriented-box bounds,
 // nearest-first distances) must give what checking every pair gives: the same contact pairs
 // and the same clearance, on random walks of the head near each part (touching, clear and
-// penetrating), with jumps that force the near lists to be rebuilt.
+// penetrating), with jumps that force the near lists to be rebuilt. The wing's mesh makes
+// checking every pair 60 times slower than on the other parts: it gets 2 walks, they 8.
 TEST(CollisionTest, BroadPhaseAgreesWithCheckingEveryPair) {
   int compared = 0, with_contacts = 0;
   for (const char* name :
        {"wing_cover", "rs566_stringer_seam", "concave_cylinder_small", "rail_hit", "cutout_slot"}) {
+    const int walks = std::string(name) == "wing_cover" ? 2 : 8;
     Loaded l = Load(SourceDir() / "scenes" / (std::string(name) + ".yaml"));
     ASSERT_TRUE(l.world) << name;
     const CellSetup cell = MakeCellSetup(*l.robot, *l.scene);
@@ -329,7 +331,7 @@ TEST(CollisionTest, BroadPhaseAgreesWithCheckingEveryPair) {
     const geom::Domain2 dom = s.Domain();
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> u01(0.0, 1.0);
-    for (int walk = 0; walk < 8; ++walk) {
+    for (int walk = 0; walk < walks; ++walk) {
       Eigen::Vector2d uv =
           dom.min + (dom.max - dom.min).cwiseProduct(Eigen::Vector2d(u01(rng), u01(rng)));
       double yaw = 360.0 * u01(rng) * kDeg;
@@ -378,6 +380,7 @@ TEST(CollisionTest, BroadPhaseAgreesWithCheckingEveryPair) {
   }
   EXPECT_GE(compared, 400);
   EXPECT_GE(with_contacts, 40);  // the walks do reach into parts and constraints
+  std::printf("compared %d poses, %d with contacts\n", compared, with_contacts);
 }
 
 // Every bundled stitching scene's decoupled programme verifies free of collision findings,

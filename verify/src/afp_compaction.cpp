@@ -12,13 +12,12 @@
 #include <string>
 
 #include "afp_laid.h"
+#include "stitchsim/common/units.h"
 
 namespace stitchsim::verify {
 namespace {
 
 using scene::LimitKey;
-
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
 struct Measure {
   const char* subject;

@@ -14,7 +14,6 @@ namespace {
 using scene::LimitKey;
 
 using detail::Fmt;
-using detail::kRadToDeg;
 
 // Percent of a per-joint limit at each sample with timed joints; the worst joint is the subject.
 class JointLoadRule : public Rule {

@@ -14,7 +14,6 @@ namespace {
 using scene::LimitKey;
 
 using detail::Fmt;
-using detail::kRadToDeg;
 
 // ---------------------------------------------------------------------------------------------
 // Kinematics (IK status of the solved samples).

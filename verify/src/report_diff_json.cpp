@@ -8,6 +8,7 @@
 #include <string_view>
 #include <type_traits>
 
+#include "detail/json_format.h"
 #include "detail/text_format.h"
 #include "stitchsim/common/version.h"
 #include "stitchsim/verify/report_diff.h"
@@ -18,16 +19,14 @@ namespace {
 using Json = nlohmann::ordered_json;
 using detail::Count;
 using detail::FormatNumber;
+using detail::XmlAttribute;
 using detail::XmlContext;
 using detail::XmlEscape;
 
 constexpr int kDiffFormatVersion = 1;
 
-Json Number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
-
-const char* SeverityName(FindingSeverity severity) {
-  return severity == FindingSeverity::kError ? "error" : "warning";
-}
+using detail::Number;
+using detail::SeverityName;
 
 const char* ChangeName(FindingChange c) {
   switch (c) {
@@ -120,10 +119,6 @@ Json RuleJson(const RuleCountDiff& r) {
   return j;
 }
 
-std::string Attribute(std::string_view name, std::string_view value) {
-  return " " + std::string(name) + "=\"" + XmlEscape(value, XmlContext::kAttribute) + "\"";
-}
-
 // "line 57 stitch 12: message" of the new finding (one line).
 std::string FindingText(const Finding& f) {
   std::string message = f.message;
@@ -159,13 +154,14 @@ std::string NewErrorList(const ReportDiff& diff, const RuleCountDiff& r, long& c
 }
 
 std::string Testcase(const ReportDiff& diff, const RuleCountDiff& r) {
-  std::string out = "    <testcase" + Attribute("classname", "stitchsim.diff") +
-                    Attribute("name", r.id) + Attribute("time", "0");
+  std::string out = "    <testcase" + XmlAttribute("classname", "stitchsim.diff") +
+                    XmlAttribute("name", r.id) + XmlAttribute("time", "0");
   long count = 0;
   const std::string errors = NewErrorList(diff, r, count);
   if (count == 0) return out + "/>\n";
-  return out + ">\n      <failure" + Attribute("message", Count(count, "new error", "new errors")) +
-         Attribute("type", r.id) + ">" + XmlEscape(errors, XmlContext::kText) +
+  return out + ">\n      <failure" +
+         XmlAttribute("message", Count(count, "new error", "new errors")) +
+         XmlAttribute("type", r.id) + ">" + XmlEscape(errors, XmlContext::kText) +
          "</failure>\n    </testcase>\n";
 }
 
@@ -226,18 +222,19 @@ std::string ReportDiffToJunit(const ReportDiff& diff) {
   }
   const std::string tests = std::to_string(diff.rules.size()), failed = std::to_string(failures);
   std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  out += "<testsuites" + Attribute("name", "stitchsim") + Attribute("tests", tests) +
-         Attribute("failures", failed) + Attribute("errors", "0") + Attribute("time", "0") + ">\n";
-  out += "  <testsuite" + Attribute("name", "stitchsim.diff") + Attribute("tests", tests) +
-         Attribute("failures", failed) + Attribute("errors", "0") + Attribute("skipped", "0") +
-         Attribute("time", "0") + ">\n";
+  out += "<testsuites" + XmlAttribute("name", "stitchsim") + XmlAttribute("tests", tests) +
+         XmlAttribute("failures", failed) + XmlAttribute("errors", "0") +
+         XmlAttribute("time", "0") + ">\n";
+  out += "  <testsuite" + XmlAttribute("name", "stitchsim.diff") + XmlAttribute("tests", tests) +
+         XmlAttribute("failures", failed) + XmlAttribute("errors", "0") +
+         XmlAttribute("skipped", "0") + XmlAttribute("time", "0") + ">\n";
   out += "    <properties>\n";
-  out += "      <property" + Attribute("name", "old_program") +
-         Attribute("value", diff.old_side.program_file) + "/>\n";
-  out += "      <property" + Attribute("name", "new_program") +
-         Attribute("value", diff.new_side.program_file) + "/>\n";
-  out +=
-      "      <property" + Attribute("name", "scene") + Attribute("value", diff.scene_name) + "/>\n";
+  out += "      <property" + XmlAttribute("name", "old_program") +
+         XmlAttribute("value", diff.old_side.program_file) + "/>\n";
+  out += "      <property" + XmlAttribute("name", "new_program") +
+         XmlAttribute("value", diff.new_side.program_file) + "/>\n";
+  out += "      <property" + XmlAttribute("name", "scene") +
+         XmlAttribute("value", diff.scene_name) + "/>\n";
   out += "    </properties>\n";
   out += cases;
   out += "  </testsuite>\n</testsuites>\n";

@@ -16,9 +16,7 @@ using detail::Count;
 using detail::FormatNumber;
 using detail::Printable;
 
-std::string WithUnit(const std::string& number, const std::string& unit) {
-  return unit.empty() ? number : number + " " + Printable(unit);
-}
+using detail::WithUnit;
 
 std::string Signed(double v) { return (v > 0.0 ? "+" : "") + FormatNumber(v); }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "detail/json_format.h"
 #include "stitchsim/verify/report.h"
 
 namespace stitchsim::verify {
@@ -16,14 +17,11 @@ using Json = nlohmann::ordered_json;
 
 constexpr int kFormatVersion = 1;
 
-// NaN and infinity have no JSON spelling: they become null rather than invalid text.
-Json Number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+using detail::Number;
 
 Json OptionalNumber(const std::optional<double>& v) { return v ? Number(*v) : Json(nullptr); }
 
-const char* SeverityName(FindingSeverity severity) {
-  return severity == FindingSeverity::kError ? "error" : "warning";
-}
+using detail::SeverityName;
 
 Json FindingToJson(const Finding& finding) {
   Json j = Json::object();

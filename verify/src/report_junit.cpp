@@ -22,14 +22,14 @@ using detail::XmlContext;
 using detail::XmlEscape;
 
 std::string Attribute(std::string_view name, std::string_view value) {
-  return " " + std::string(name) + "=\"" + XmlEscape(value, XmlContext::kAttribute) + "\"";
+  return detail::XmlAttribute(name, value);
 }
 
 std::string Attribute(std::string_view name, long value) {
   return Attribute(name, std::to_string(value));
 }
 
-std::string WithUnit(const std::string& number, const std::string& unit) {
+std::string RawWithUnit(const std::string& number, const std::string& unit) {
   return unit.empty() ? number : number + " " + unit;
 }
 
@@ -47,7 +47,7 @@ std::string FindingLine(const Finding& finding) {
 std::string FailureMessage(const RuleSummary& rule) {
   std::string message = Count(rule.errors, "error", "errors");
   if (rule.worst_value) {
-    message += "; worst " + WithUnit(FormatNumber(*rule.worst_value), rule.unit);
+    message += "; worst " + RawWithUnit(FormatNumber(*rule.worst_value), rule.unit);
     if (rule.worst_line > 0) {
       message += " at line " + std::to_string(rule.worst_line);
     } else if (rule.worst_stitch > 0) {
@@ -55,15 +55,17 @@ std::string FailureMessage(const RuleSummary& rule) {
     }
   }
   if (rule.error_limit) {
-    message += " (limit " + WithUnit(FormatNumber(*rule.error_limit), rule.unit) + ")";
+    message += " (limit " + RawWithUnit(FormatNumber(*rule.error_limit), rule.unit) + ")";
   }
   // Subjects with their own limits: each figure beside its own limit.
   for (const SubjectFigure& s : rule.subjects) {
     message += "; " + s.subject + " worst ";
-    message += s.checked == 0 || !s.worst_value ? std::string("n/a")
-                                                : WithUnit(FormatNumber(*s.worst_value), rule.unit);
-    message += s.error_limit ? " (limit " + WithUnit(FormatNumber(*s.error_limit), rule.unit) + ")"
-                             : std::string(" (no limit)");
+    message += s.checked == 0 || !s.worst_value
+                   ? std::string("n/a")
+                   : RawWithUnit(FormatNumber(*s.worst_value), rule.unit);
+    message += s.error_limit
+                   ? " (limit " + RawWithUnit(FormatNumber(*s.error_limit), rule.unit) + ")"
+                   : std::string(" (no limit)");
   }
   return message;
 }

@@ -54,9 +54,7 @@ std::string FormatFixed1(double v) {
   return std::string(buffer.data(), result.ptr);
 }
 
-std::string WithUnit(const std::string& number, const std::string& unit) {
-  return unit.empty() ? number : number + " " + Printable(unit);
-}
+using detail::WithUnit;
 
 std::string Uppercase(std::string s) {
   for (char& c : s) {

@@ -16,7 +16,6 @@ namespace {
 using scene::LimitKey;
 
 using detail::Fmt;
-using detail::kRadToDeg;
 
 // ---------------------------------------------------------------------------------------------
 // Needle rules (the process model's window metrics).

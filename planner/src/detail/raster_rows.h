@@ -4,6 +4,8 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cstdio>
+#include <string>
 
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/geom/surface.h"
@@ -16,6 +18,13 @@ namespace stitchsim::planner::detail {
 inline constexpr double kProgressCountShare = 0.1;
 inline constexpr double kProgressPassShare = 0.1;
 inline constexpr double kProgressWriteShare = 0.8;
+
+/// A number in the plan's notes and the programme's comments: six decimals.
+inline std::string Num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.6f", v);
+  return buf;
+}
 
 /// Steps along a row (v fixed) at an exact 3D chord of `pitch`.
 class RowStepper {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "stitchsim/common/limits.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/modal_state.h"
 #include "stitchsim/program/reader.h"
@@ -19,8 +20,6 @@
 #include "stitchsim/sim/executor.h"
 
 namespace stitchsim::sim::detail {
-
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 using program::Axis;
 

@@ -6,6 +6,8 @@
 #include <string>
 #include <string_view>
 
+#include "stitchsim/common/units.h"
+
 namespace stitchsim::verify::detail {
 
 inline constexpr char32_t kInvalidCodePoint = 0xFFFFFFFF;
@@ -35,6 +37,14 @@ std::string XmlEscape(std::string_view s, XmlContext context);
 /// printf of up to three numbers into a string (the rules' messages).
 std::string Fmt(const char* format, double a, double b = 0.0, double c = 0.0);
 
-inline constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+/// "12.5 mm": a formatted number and its unit (printable), or the number alone.
+inline std::string WithUnit(const std::string& number, const std::string& unit) {
+  return unit.empty() ? number : number + " " + Printable(unit);
+}
+
+/// ` name="value"`, the value escaped for an XML attribute.
+inline std::string XmlAttribute(std::string_view name, std::string_view value) {
+  return " " + std::string(name) + "=\"" + XmlEscape(value, XmlContext::kAttribute) + "\"";
+}
 
 }  // namespace stitchsim::verify::detail

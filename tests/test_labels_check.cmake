@@ -1,0 +1,20 @@
+# ctest `test_labels`: each LABEL:TEST,TEST,... group of stitchsim_label_tests is listed by
+# `ctest -N -L LABEL` (a renamed or removed test would silently lose its label).
+string(REPLACE "," ";" groups "${LABELLED}")
+set(label "")
+foreach(item ${groups})
+  if(item MATCHES "^([a-z]+):(.*)$")
+    set(label ${CMAKE_MATCH_1})
+    set(item ${CMAKE_MATCH_2})
+    execute_process(COMMAND ${CTEST} --test-dir ${BUILD} -N -L "^${label}$"
+                    OUTPUT_VARIABLE listed RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "ctest -N -L ${label} failed (${rc})")
+    endif()
+  endif()
+  string(FIND "${listed}" ": ${item}\n" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "label ${label}: no test ${item} (renamed? update stitchsim_label_tests)")
+  endif()
+  message(STATUS "${label}: ${item}")
+endforeach()
