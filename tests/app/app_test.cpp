@@ -473,13 +473,16 @@ TEST(PlanAfpCommand, InclineAutoHandsOverAProgrammeThatVerifies) {
   // The verifier's own measure of the lowered programme: the fastest joint just under its
   // limit (the feed was scaled to 95 % of it), not slowed far more than needed.
   const json j = json::parse(ReadText(report));
+  int found = 0;  // a renamed rule must fail here, not skip the checks below
   for (const auto& rule : j["rules"]) {
     if (rule["id"] != "kin.joint_speed") continue;
+    ++found;
     EXPECT_LE(rule["worst"]["value"].get<double>(), 100.0);
     if (plan.out.find("feed lowered on") != std::string::npos) {
       EXPECT_GE(rule["worst"]["value"].get<double>(), 90.0);
     }
   }
+  EXPECT_EQ(found, 1);
   // Where the feed was lowered it is written in the programme and restored after: every F is
   // at most the layup speed (200 mm/s), and the last F is the layup speed again.
   const std::string text = ReadText(programme);
