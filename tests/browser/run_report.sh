@@ -1,12 +1,17 @@
 #!/usr/bin/env bash
 # Plans a bundled scene, verifies it with --html and checks the page in headless Chromium:
-#   tests/browser/run_report.sh STITCHSIM SCENE "PLAN ARGS" [OUT_DIR]
-# e.g. run_report.sh build/app/stitchsim scenes/circle_8in.yaml "stitch --mode coupled".
-# A programme with findings must also pass the "go to this finding" check. OUT_DIR keeps the
+#   tests/browser/run_report.sh STITCHSIM SCENE "PLAN ARGS" EXIT [OUT_DIR]
+# e.g. run_report.sh build/app/stitchsim scenes/circle_8in.yaml "stitch --mode coupled" 1.
+# EXIT is the verdict verify must give (0 clean, 1 findings); any other fails the test, and a
+# programme with findings must also pass the "go to this finding" check. OUT_DIR keeps the
 # programme, the page and the screenshots (default: a scratch folder, removed).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
-bin="$1" scene="$2" plan="$3" out="${4:-}"
+bin="$1" scene="$2" plan="$3" want="$4" out="${5:-}"
+if [[ $want != 0 && $want != 1 ]]; then
+  echo "run_report: EXIT must be 0 or 1, not '$want'" >&2
+  exit 2
+fi
 if [[ -z "$out" ]]; then
   out="$(mktemp -d "/tmp/stitchsim-report-$$-XXXX")"
   trap 'rm -rf "$out"' EXIT
@@ -17,8 +22,8 @@ mkdir -p "$out"
 rc=0
 "$bin" verify "$out/prog.nc" --scene "$scene" --quiet --html "$out/report.html" \
   --report "$out/report.json" >/dev/null || rc=$?
-if ((rc > 1)); then
-  echo "run_report: verify exit $rc" >&2
+if ((rc != want)); then
+  echo "run_report: verify exit $rc, expected $want" >&2
   exit 1
 fi
 expect=()
