@@ -7,6 +7,7 @@
 #include "cad_surface_reader.h"
 #include "limit_map.h"
 #include "ply_reader.h"
+#include "scene_bounds.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/common/limits.h"
 #include "stitchsim/common/units.h"
@@ -230,6 +231,7 @@ class SceneLoader {
         r_.Error(*n, "bad-mesh", err);
         return;
       }
+      if (!detail::CheckMeshExtent(r_, *n, *path, mesh)) return;
       scene.surface = geom::MakeMeshSurface(std::move(mesh));
     } else if (detail::IsCadSurfaceType(*type)) {
       scene.surface = detail::ReadCadSurface(r_, *s, *type, unit_, files_);
@@ -319,6 +321,7 @@ class SceneLoader {
           r_.Error(*n, "bad-mesh", err);
           continue;
         }
+        if (!detail::CheckMeshExtent(r_, *n, *path, c.mesh)) continue;
         c.shape = Constraint::Shape::kMesh;
       } else {
         r_.Error(*tn, "bad-value", "constraint type must be box or mesh, got '" + *type + "'");
@@ -361,7 +364,9 @@ class SceneLoader {
       p.type = *type;
       p.curve = std::make_unique<geom::Curve2>();
       if (!BuildCurve(item, *tn, *type, *p.curve)) continue;
-      if (scene.surface) CheckInDomain(item, p, *scene.surface);
+      if (scene.surface && CheckInDomain(item, p, *scene.surface)) {
+        detail::CheckStitchCount(r_, item, p, *scene.surface, scene.nominal_stitch_length_mm);
+      }
       scene.paths.push_back(std::move(p));
     }
   }
@@ -485,7 +490,7 @@ class SceneLoader {
     return true;
   }
 
-  void CheckInDomain(const YAML::Node& item, const PathSpec& p, const geom::Surface& surface) {
+  bool CheckInDomain(const YAML::Node& item, const PathSpec& p, const geom::Surface& surface) {
     const geom::Domain2 d = surface.Domain();
     for (std::size_t s = 0; s < p.curve->SegmentCount(); ++s) {
       for (int k = 0; k <= 32; ++k) {
@@ -495,10 +500,11 @@ class SceneLoader {
                    "path '" + p.name + "' leaves the surface domain near (" +
                        std::to_string(uv.x() / MmPer(unit_)) + ", " +
                        std::to_string(uv.y() / MmPer(unit_)) + ") " + std::string(UnitName(unit_)));
-          return;
+          return false;
         }
       }
     }
+    return true;
   }
 
   void ReadLimits(const YAML::Node& root, Scene& scene) {

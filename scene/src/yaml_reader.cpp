@@ -9,6 +9,7 @@
 
 #include "stitchsim/common/files.h"
 #include "stitchsim/common/limits.h"
+#include "yaml_alias_budget.h"
 
 namespace stitchsim::scene::detail {
 namespace {
@@ -68,6 +69,12 @@ std::optional<YAML::Node> YamlReader::LoadFile() {
 
 std::optional<YAML::Node> YamlReader::LoadText(const std::string& text) {
   try {
+    if (auto problem = FindAliasProblem(text, limits::kMaxYamlNodes)) {
+      sink_.Error(prefix_ + "-yaml-alias",
+                  {file_.string(), problem->mark.line + 1, problem->mark.column + 1},
+                  problem->message);
+      return std::nullopt;
+    }
     YAML::Node root = YAML::Load(text);
     if (!root.IsDefined() || root.IsNull()) {
       sink_.Error(prefix_ + "-empty", {file_.string(), 1, 1}, "file is empty");
@@ -281,7 +288,15 @@ std::optional<double> YamlReader::Length(const YAML::Node& node, LengthUnit unit
           std::string(what) + " must be a finite length, got '" + node.Scalar() + "'");
     return std::nullopt;
   }
-  return *v * MmPer(u);
+  const double mm = *v * MmPer(u);
+  if (std::abs(mm) > limits::kMaxLengthMm) {
+    Error(node, "out-of-range",
+          std::string(what) + " is " + node.Scalar() + ", beyond the " +
+              std::to_string(static_cast<long>(limits::kMaxLengthMm)) +
+              " mm (1 km) a length may have (docs/limits.md)");
+    return std::nullopt;
+  }
+  return mm;
 }
 
 std::optional<Eigen::VectorXd> YamlReader::Vector(const YAML::Node& node, int n,

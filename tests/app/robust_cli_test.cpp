@@ -151,7 +151,7 @@ TEST_F(RobustCli, ATinyStitchLengthIsRefusedUpFront) {
   const fs::path scene = FlatScene("nominal_length: 5", "nominal_length: 0.000001");
   const CliRun r = Cli("plan stitch --scene " + scene.string() + " -o " + (dir_ / "o.nc").string());
   EXPECT_EQ(r.exit_code, 2) << Describe(r);
-  EXPECT_NE(r.err.find("plan-too-many-stitches"), std::string::npos) << Describe(r);
+  EXPECT_NE(r.err.find("scene-too-many-stitches"), std::string::npos) << Describe(r);
   EXPECT_NE(r.err.find(scene.string() + ":19:"), std::string::npos) << Describe(r);
   EXPECT_FALSE(fs::exists(dir_ / "o.nc"));
 }

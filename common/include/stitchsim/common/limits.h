@@ -9,6 +9,13 @@ namespace stitchsim::limits {
 
 /// Scene, head spec, dialect and user-library YAML files.
 inline constexpr std::uint64_t kMaxYamlFileBytes = 2u << 20;  // 2 MiB (yaml-cpp: ~90x in memory)
+/// Nodes of one YAML document counted with its aliases expanded: an alias past it is refused
+/// (ten levels of ten aliases stand for ten billion). Only aliases can reach it: a 2 MiB file
+/// without them holds at most about two million nodes (`{a,b,...}`: a key and a null each).
+inline constexpr std::uint64_t kMaxYamlNodes = 4'000'000;
+/// Largest magnitude of a length read from a scene (sizes, radii, coordinates, offsets) and
+/// of an STL vertex coordinate a scene names, in millimetres: 1 km.
+inline constexpr double kMaxLengthMm = 1e6;
 /// URDF and MJCF model files.
 inline constexpr std::uint64_t kMaxModelFileBytes = 32u << 20;  // 32 MiB
 /// STL meshes (surface and constraints); a binary STL of this size holds ~670,000 triangles.
