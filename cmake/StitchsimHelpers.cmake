@@ -63,7 +63,9 @@ endfunction()
 # The label is set when ctest reads the folder, after the discovered tests (TEST_INCLUDE_FILES
 # run in order). ctest ignores a name it does not know: the `test_labels` test checks them all.
 function(stitchsim_label_tests label)
-  set(file ${CMAKE_CURRENT_BINARY_DIR}/label_${label}.cmake)
+  # One file per call (named by its list), so two calls in one folder do not overwrite.
+  string(MD5 id "${label}:${ARGN}")
+  set(file ${CMAKE_CURRENT_BINARY_DIR}/label_${label}_${id}.cmake)
   set(text "")
   foreach(test ${ARGN})
     string(APPEND text "set_tests_properties(\"${test}\" PROPERTIES LABELS ${label})\n")

@@ -47,7 +47,7 @@ sim::JointVector JointsFromCli(const std::vector<double>& values) {
   sim::JointVector q;
   for (int j = 0; j < sim::kNumJoints; ++j) {
     const double v = values[static_cast<std::size_t>(j)];
-    q[j] = j == sim::kRailX ? v / 1000.0 : v * kDegToRad;
+    q[j] = j == sim::kRailX ? v / 1000.0 : v * kDeg;
   }
   return q;
 }
@@ -162,7 +162,7 @@ int RunIk(const IkArgs& a) {
   }
   const Eigen::Isometry3d target = *program::ToolPoseOf(commanded, DialectEulerOrder());
   const sim::ToolPoseSolution sol =
-      sim::SolveToolPose(cell, target, a.rotator_deg * kDegToRad, a.rail_mm, nullptr);
+      sim::SolveToolPose(cell, target, a.rotator_deg * kDeg, a.rail_mm, nullptr);
   const sim::IkResult& ik = sol.ik;
 
   json out;

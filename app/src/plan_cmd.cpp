@@ -124,7 +124,7 @@ struct PlanAfpArgs {
 
 std::string Deg(double rad) {
   char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.3f", rad / kDegToRad);
+  std::snprintf(buf, sizeof(buf), "%.3f", rad / kDeg);
   return buf;
 }
 
@@ -243,7 +243,7 @@ int RunPlanAfp(const PlanAfpArgs& a) {
     if (path == nullptr) return kExitBadInput;
   }
   planner::AfpPlanOptions options;
-  if (by_lay_angle) options.lay_angle_rad = a.lay_angle_deg * kDegToRad;
+  if (by_lay_angle) options.lay_angle_rad = a.lay_angle_deg * kDeg;
   options.point_spacing_mm = a.point_spacing_mm;
   if (a.incline == "auto") return RunPlanAfpAuto(a, path, options);
   char* end = nullptr;
@@ -254,7 +254,7 @@ int RunPlanAfp(const PlanAfpArgs& a) {
                "--incline must be a number of degrees or 'auto', got '" + a.incline + "'");
     return kExitBadInput;
   }
-  options.incline_rad = incline_deg * kDegToRad;
+  options.incline_rad = incline_deg * kDeg;
   auto plan = planner::PlanAfpCourse(*scene, path, options, sink);
   if (PrintDiagnostics(sink) || !plan) return kExitBadInput;
   return WriteAfpOutputs(*scene, *plan, a);

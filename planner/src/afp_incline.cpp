@@ -90,8 +90,8 @@ std::vector<double> InclineCandidates(const InclineSearchOptions& search) {
   const int steps = static_cast<int>(std::floor(search.max_deg / search.step_deg + 1e-9));
   std::vector<double> out{0.0};
   for (int k = 1; k <= steps; ++k) {
-    out.push_back(k * search.step_deg * kDegToRad);
-    out.push_back(-k * search.step_deg * kDegToRad);
+    out.push_back(k * search.step_deg * kDeg);
+    out.push_back(-k * search.step_deg * kDeg);
   }
   return out;
 }
@@ -113,7 +113,7 @@ InclineSearchResult SearchAfpIncline(
     std::string error;
     if (!JudgeCandidate(scene, judge, search, *plan, c, error)) {
       char deg[32];
-      std::snprintf(deg, sizeof(deg), "%.3f", incline_rad / kDegToRad);
+      std::snprintf(deg, sizeof(deg), "%.3f", incline_rad / kDeg);
       out.error = std::string("incline ") + deg + " deg: " + error;
       return out;
     }

@@ -11,7 +11,6 @@
 #include "stitchsim/program/writer.h"
 
 namespace stitchsim::planner {
-namespace {}  // namespace
 
 std::optional<Mode> ParseMode(std::string_view text) {
   if (text == "coupled") return Mode::kCoupled;

@@ -11,7 +11,6 @@ inline constexpr double kMmPerInch = 25.4;
 inline constexpr double kPi = 3.14159265358979323846;
 /// Radians in one degree, and degrees in one radian (`x * kDeg` is x degrees in radians).
 inline constexpr double kDeg = kPi / 180.0;
-inline constexpr double kDegToRad = kDeg;
 inline constexpr double kRadToDeg = 180.0 / kPi;
 
 inline constexpr double DegToRad(double deg) { return deg * kPi / 180.0; }
