@@ -27,17 +27,18 @@ void PrintPly(const scene::Scene& scene, const planner::PlyPlan& plan, double wa
   for (const auto& c : plan.courses)
     for (const auto& t : c.tows) laid_tows += t.laid.empty() ? 0 : 1;
   std::printf(
-      "%s: ply '%s' (%g deg, coverage %g %%, %d tows of %.3f mm) on %s: %zu courses, %d tows "
-      "laid in %d segments, %d cut/add events, lay-up %.1f mm (%.1f s at %g mm/s); min "
-      "steering radius %.1f mm (head limit %.1f mm); max gap %.4f mm, max overlap %.4f mm "
-      "between courses; planned in %.2f s -> %s%s%s\n",
+      "%s: ply '%s' (%g deg, coverage %g %%, %d tows of %.3f mm: head tows %d..%d) on %s: %zu "
+      "courses, %d tows laid in %d segments, %d cut/add events, lay-up %.1f mm (%.1f s at %g "
+      "mm/s); min steering radius %.1f mm (head limit %.1f mm); max gap %.4f mm, max overlap "
+      "%.4f mm between courses; bare %.2f %%, doubled %.2f %%, laid outside %.2f %% of the ply; "
+      "planned in %.2f s -> %s%s%s\n",
       scene.name.c_str(), plan.ply_name.c_str(), plan.angle_rad * 180.0 / 3.14159265358979323846,
-      plan.coverage * 100.0, plan.layout.tows, plan.layout.width_mm, scene.head.name.c_str(),
-      plan.courses.size(), laid_tows, plan.tow_segments, plan.events, plan.laid_length_mm,
-      plan.laid_length_mm / scene.head.afp.layup_speed_mm_s, scene.head.afp.layup_speed_mm_s,
-      plan.min_radius_mm, scene.head.afp.min_steering_radius_mm, plan.max_gap_mm,
-      plan.max_overlap_mm, wall_s, a.output.c_str(), a.tows_csv.empty() ? "" : ", ",
-      a.tows_csv.c_str());
+      plan.coverage * 100.0, plan.band.count, plan.layout.width_mm, plan.band.first,
+      plan.band.Last(), scene.head.name.c_str(), plan.courses.size(), laid_tows, plan.tow_segments,
+      plan.events, plan.laid_length_mm, plan.laid_length_mm / scene.head.afp.layup_speed_mm_s,
+      scene.head.afp.layup_speed_mm_s, plan.min_radius_mm, scene.head.afp.min_steering_radius_mm,
+      plan.max_gap_mm, plan.max_overlap_mm, plan.bare_pct, plan.doubled_pct, plan.laid_outside_pct,
+      wall_s, a.output.c_str(), a.tows_csv.empty() ? "" : ", ", a.tows_csv.c_str());
   for (const auto& f : plan.findings)
     std::printf("error[%s]: %s (the cell cannot lay this ply as planned)\n", f.code.c_str(),
                 f.message.c_str());

@@ -48,7 +48,7 @@ class CentreLine {
   std::vector<double> length_;
 };
 
-/// Tow states at one point: bit t-1 set when tow t lays material there.
+/// Tow states at one point: bit t-1 set when the band's tow t lays material there.
 struct Sample {
   PlyPoint point;
   std::vector<Eigen::Vector2d> boundary_uv;
@@ -64,14 +64,16 @@ class CourseBuilder {
   Sample At(double s) const {
     Sample x;
     x.point = line_.At(s);
-    const process::TowCross cross = process::TowsAt(ctx_.surface, x.point.tool, ctx_.layout,
-                                                    &x.point.uv, ctx_.options.max_substep_mm);
+    const process::TowCross cross =
+        process::TowsAt(ctx_.surface, x.point.tool, ctx_.layout, ctx_.band, &x.point.uv,
+                        ctx_.options.max_substep_mm);
     if (!cross.ok) return x;
     x.ok = true;
     x.point.boundary = cross.boundary;
+    x.point.boundary_uv = cross.boundary_uv;
     x.boundary_uv = cross.boundary_uv;
     const double p = ctx_.ply.coverage;
-    for (int t = 1; t <= ctx_.layout.tows; ++t) {
+    for (int t = 1; t <= ctx_.band.count; ++t) {
       const double out = geom::FractionOutside(ctx_.ply.boundary_uv,
                                                cross.boundary_uv[static_cast<std::size_t>(t - 1)],
                                                cross.boundary_uv[static_cast<std::size_t>(t)]);
@@ -121,9 +123,9 @@ double GeodesicRadius(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const 
   return den / k2;
 }
 
-void TowRadii(PlyCourse& course) {
+void TowRadii(PlyCourse& course, const process::TowBand& band) {
   for (PlyTow& tow : course.tows) {
-    const std::size_t i = static_cast<std::size_t>(tow.tow);
+    const std::size_t i = static_cast<std::size_t>(tow.tow - band.first + 1);
     std::vector<const PlyPoint*> pts;
     auto centre = [&](const PlyPoint* p) { return 0.5 * (p->boundary[i - 1] + p->boundary[i]); };
     for (const TowSegment& seg : tow.laid) {
@@ -142,7 +144,7 @@ void TowRadii(PlyCourse& course) {
 }  // namespace
 
 std::optional<PlyCourse> PlanCourse(const CourseContext& ctx, const SurfaceCurve& centre,
-                                    int offset_index, double* off_surface_s) {
+                                    int offset_index, CourseOffSurface& off_surface) {
   if (centre.size() < 2) return std::nullopt;
   const CourseBuilder b(ctx, centre);
   const double length = b.Line().Length();
@@ -150,10 +152,13 @@ std::optional<PlyCourse> PlanCourse(const CourseContext& ctx, const SurfaceCurve
   const int segments = std::max(1, static_cast<int>(std::ceil(length / spacing - 1e-9)));
   std::vector<Sample> samples;
   samples.reserve(static_cast<std::size_t>(segments) + 1);
-  for (int i = 0; i <= segments; ++i) samples.push_back(b.At(length * i / segments));
+  for (int i = 0; i <= segments; ++i) {
+    samples.push_back(b.At(length * i / segments));
+    off_surface.anywhere = off_surface.anywhere || !samples.back().ok;
+  }
   // Events: state changes between samples (a failed sample lays nothing).
   std::vector<Event> events;
-  const int k = ctx.layout.tows;
+  const int k = ctx.band.count;
   for (int t = 1; t <= k; ++t) {
     const std::uint64_t bit = std::uint64_t{1} << (t - 1);
     bool laid = false;
@@ -196,14 +201,14 @@ std::optional<PlyCourse> PlanCourse(const CourseContext& ctx, const SurfaceCurve
     x.point.event = std::binary_search(events.begin(), events.end(), Event{s, 0, true},
                                        [](const Event& p, const Event& q) { return p.s < q.s; });
     if (!x.ok) {  // a tow boundary leaves the surface while the course lays
-      *off_surface_s = s;
+      off_surface.laying_s = s;
       return std::nullopt;
     }
     course.points.push_back(std::move(x.point));
   }
   for (int t = 1; t <= k; ++t) {
     PlyTow tow;
-    tow.tow = t;
+    tow.tow = ctx.band.first + t - 1;  // as the head numbers it
     for (const Event& e : events) {
       if (e.tow != t) continue;
       if (e.add) {
@@ -215,7 +220,7 @@ std::optional<PlyCourse> PlanCourse(const CourseContext& ctx, const SurfaceCurve
     std::erase_if(tow.laid, [](const TowSegment& g) { return g.end_mm <= g.start_mm; });
     course.tows.push_back(std::move(tow));
   }
-  TowRadii(course);
+  TowRadii(course, ctx.band);
   return course;
 }
 

@@ -8,21 +8,33 @@
 
 #include "stitchsim/planner/offset_curves.h"
 #include "stitchsim/planner/ply_planner.h"
+#include "stitchsim/process/afp_coverage.h"
 
 namespace stitchsim::planner {
 
 struct CourseContext {
   const geom::Surface& surface;
   const scene::PlySpec& ply;
-  process::TowLayout layout;
+  process::TowLayout layout;  ///< the head's tows
+  process::TowBand band;      ///< the head's tows this ply lays
   const PlyPlanOptions& options;
 };
 
+/// Where a course's tows leave the surface (process::TowsAt fails).
+struct CourseOffSurface {
+  bool anywhere = false;   ///< at some sample along the course (it lays nothing there)
+  double laying_s = -1.0;  ///< >= 0: the course length where they leave it while it lays
+};
+
 /// The course along `centre` (a dense curve on the surface), or nullopt when no tow is laid,
-/// or when the tows leave the surface between the first add and the last cut (then
-/// `*off_surface_s` = the course length there).
+/// or when the tows leave the surface between the first add and the last cut.
 std::optional<PlyCourse> PlanCourse(const CourseContext& ctx, const SurfaceCurve& centre,
-                                    int offset_index, double* off_surface_s);
+                                    int offset_index, CourseOffSurface& off_surface);
+
+/// The plan's coverage of `ply` as the afp.coverage rule reads a programme (the band's laid
+/// tows painted between consecutive course points; process::MapForPly, MeasurePly).
+process::PlyCoveragePct PlanCoverage(const PlyPlan& plan, const geom::Surface& surface,
+                                     const scene::PlySpec& ply);
 
 /// `c` run backwards (points reversed, tangents negated).
 SurfaceCurve Reversed(SurfaceCurve c);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <tuple>
 
 #include "ply_course.h"
 #include "stitchsim/geom/polygon2.h"
@@ -221,8 +223,8 @@ class PlyBuilder {
         options_(options),
         sink_(sink),
         plan_(plan),
-        width_(plan.layout.tows * plan.layout.width_mm),
-        ctx_{surface_, ply, plan.layout, options} {}
+        width_(plan.band.count * plan.layout.width_mm),
+        ctx_{surface_, ply, plan.layout, plan.band, options} {}
 
   /// The ply's region in (u, v), grown by `margin`, inside the domain.
   geom::Domain2 Within(double margin) const {
@@ -247,7 +249,8 @@ class PlyBuilder {
   /// leave the surface, only the points whose offset (predicted to first order) stays on it
   /// are offset, with a growing margin. nullopt: nothing left.
   std::optional<SurfaceCurve> Offset(const SurfaceCurve& curve, double distance, int side,
-                                     const geom::Domain2& region) const {
+                                     const geom::Domain2& region,
+                                     bool* left_surface = nullptr) const {
     // Extended by two course widths, or less where the extension's offset would leave the
     // surface (near a sharp trailing edge the walk can lose the skin it is on).
     std::optional<SurfaceCurve> next;
@@ -262,7 +265,10 @@ class PlyBuilder {
       }
       if (next) break;
     }
-    if (!next) return std::nullopt;
+    if (!next) {
+      if (left_surface != nullptr) *left_surface = true;
+      return std::nullopt;
+    }
     SurfaceCurve trimmed = Trim(*next, region);
     if (trimmed.size() < 2) return std::nullopt;
     return trimmed;
@@ -270,16 +276,20 @@ class PlyBuilder {
 
   enum class Added { kYes, kNothing, kError };
   Added Course(const SurfaceCurve& curve, int offset_index) {
-    double off_surface_s = -1.0;
-    std::optional<PlyCourse> course = PlanCourse(ctx_, curve, offset_index, &off_surface_s);
-    if (off_surface_s >= 0.0) {
+    CourseOffSurface off;
+    std::optional<PlyCourse> course = PlanCourse(ctx_, curve, offset_index, off);
+    if (off.laying_s >= 0.0) {
       sink_.Error("plan-ply-off-surface", ply_.where,
                   "ply '" + ply_.name + "': the tows of course " + std::to_string(offset_index) +
-                      " (from the reference) leave the surface " + std::to_string(off_surface_s) +
+                      " (from the reference) leave the surface " + std::to_string(off.laying_s) +
                       " mm along it; keep the ply a course width inside the surface");
       return Added::kError;
     }
-    if (!course) return Added::kNothing;
+    if (!course) {
+      // Nothing laid where the tows are off the surface: the ply may still need this course.
+      if (off.anywhere) off_surface_.push_back(offset_index);
+      return Added::kNothing;
+    }
     plan_.courses.push_back(std::move(*course));
     if (static_cast<int>(plan_.courses.size()) > options_.max_courses) {
       sink_.Error("plan-ply-too-many-courses", ply_.where,
@@ -301,12 +311,16 @@ class PlyBuilder {
     for (int side : {1, -1}) {
       SurfaceCurve curve = *ref;
       for (int index = 1;; ++index) {
-        auto next = Offset(curve, width_, side, region);
-        if (!next) break;
+        bool left_surface = false;
+        auto next = Offset(curve, width_, side, region, &left_surface);
+        if (!next) {
+          if (left_surface) off_surface_.push_back(side * index);
+          break;
+        }
         curve = std::move(*next);
         const Added a = Course(curve, side * index);
         if (a == Added::kError) return false;
-        if (a == Added::kNothing) break;  // the ply is behind
+        if (a == Added::kNothing) break;  // the ply is behind, or the surface ends
         Report(static_cast<double>(plan_.courses.size()), 0.0);
       }
     }
@@ -336,6 +350,10 @@ class PlyBuilder {
     return true;
   }
 
+  /// Offsets from the reference (> 0 to its left) of the courses not laid because their tows
+  /// or their centre curve would leave the surface.
+  const std::vector<int>& OffSurface() const { return off_surface_; }
+
  private:
   void Report(double done, double total) const {
     if (options_.progress) options_.progress(done, total);
@@ -348,7 +366,47 @@ class PlyBuilder {
   PlyPlan& plan_;
   double width_;
   CourseContext ctx_;
+  std::vector<int> off_surface_;
 };
+
+/// The plan against its own coverage rule (PlanCoverage): false (plan-ply-off-surface) when
+/// courses the surface has no room for leave the ply bare beyond the limit; a "ply-coverage"
+/// finding when it falls short for another reason.
+bool JudgeCoverage(PlyPlan& plan, const scene::Scene& scene, const scene::PlySpec& ply,
+                   const std::vector<int>& off_surface, DiagnosticSink& sink) {
+  const process::PlyCoveragePct pct = PlanCoverage(plan, *scene.surface, ply);
+  plan.bare_pct = pct.bare;
+  plan.doubled_pct = pct.doubled;
+  plan.laid_outside_pct = pct.laid_outside;
+  const double max_bare = scene.limits.Value(scene::LimitKey::kAfpCoverageMaxBarePct);
+  const double max_doubled = scene.limits.Value(scene::LimitKey::kAfpCoverageMaxDoubledPct);
+  char text[400];
+  if (pct.bare > max_bare && !off_surface.empty()) {
+    std::string courses;
+    for (int i : off_surface)
+      courses += (courses.empty() ? "" : " and ") + std::to_string(std::abs(i)) +
+                 (i > 0 ? " to the left" : " to the right");
+    std::snprintf(text, sizeof(text),
+                  "ply '%s': the courses from %s of the reference outwards would lay their "
+                  "tows off the surface and are not laid; without them %.3g %% of the ply is "
+                  "bare (afp.coverage allows %.3g %%); keep the ply a course width (%.1f mm) "
+                  "inside the surface",
+                  ply.name.c_str(), courses.c_str(), pct.bare, max_bare,
+                  plan.band.count * plan.layout.width_mm);
+    sink.Error("plan-ply-off-surface", ply.where, text);
+    return false;
+  }
+  for (const auto& [what, value, limit] :
+       {std::tuple{"bare", pct.bare, max_bare}, std::tuple{"doubled", pct.doubled, max_doubled}}) {
+    if (value <= limit) continue;
+    std::snprintf(text, sizeof(text),
+                  "the courses planned leave %.3g %% of ply '%s' %s beyond the band of one tow "
+                  "along its boundary (afp.coverage allows %.3g %%)",
+                  value, ply.name.c_str(), what, limit);
+    plan.findings.push_back({"ply-coverage", text});
+  }
+  return true;
+}
 
 }  // namespace
 
@@ -363,7 +421,8 @@ std::optional<PlyPlan> PlanPly(const scene::Scene& scene, const scene::PlySpec& 
   plan.ply_name = ply.name;
   plan.angle_rad = ply.angle_rad;
   plan.coverage = ply.coverage;
-  plan.layout = {ply.tows, scene.head.afp.tow_width_mm};
+  plan.layout = process::TowLayoutOf(scene.head);
+  plan.band = process::PlyTowBand(plan.layout, ply.tows);
   for (std::size_t i = 0; i < scene.plies.size(); ++i)
     if (scene.plies[i].name == ply.name) plan.ply_index = static_cast<int>(i) + 1;
   PlyBuilder builder(scene, ply, options, sink, plan);
@@ -375,6 +434,7 @@ std::optional<PlyPlan> PlanPly(const scene::Scene& scene, const scene::PlySpec& 
     return std::nullopt;
   }
   Summarise(plan, scene);
+  if (!JudgeCoverage(plan, scene, ply, builder.OffSurface(), sink)) return std::nullopt;
   return plan;
 }
 

@@ -53,7 +53,7 @@ class PlyWriter {
                         {"angle_deg", Num(plan_->angle_rad * 180.0 / 3.14159265358979323846)},
                         {"coverage_pct", Num(plan_->coverage * 100.0, "%.0f")},
                         {"courses", std::to_string(plan_->courses.size())},
-                        {"tows", std::to_string(plan_->layout.tows)}};
+                        {"tows", std::to_string(plan_->band.count)}};
     } else {
       // Several plies: names joined by commas, courses summed (each ply's own line says more).
       std::string names;
@@ -66,7 +66,7 @@ class PlyWriter {
                         {"head", scene_.head.name},
                         {"plies", names},
                         {"courses", std::to_string(courses)},
-                        {"tows", std::to_string(plan_->layout.tows)}};
+                        {"tows", std::to_string(plan_->band.count)}};
     }
     detail::WriteOpening(w_, b_, d_, header, scene_.head.tool_number);
     for (const PlyPlan* p : plans_) {
@@ -116,8 +116,8 @@ class PlyWriter {
     Code(d_.m.head_lower, std::nullopt);
     const auto events = CourseEvents(c);
     std::uint64_t laid = 0;
-    const std::uint64_t all =
-        plan_->layout.tows >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << plan_->layout.tows) - 1;
+    // Tow numbers as the head numbers them (PlyTow::tow); P0 only when the band is the head.
+    const std::uint64_t all = process::BandTows(plan_->band);
     for (const PlyPoint& p : c.points) {
       Feed(p);
       const auto it = events.find(p.s_mm);
@@ -131,7 +131,7 @@ class PlyWriter {
         for (int t : it->second.cut) Code(d_.m.tow_cut, t);
       }
       laid &= ~cut;
-      if (laid == 0 && add == all && plan_->layout.tows == scene_.head.afp.tows) {
+      if (laid == 0 && add == all && plan_->band.count == plan_->layout.tows) {
         Code(d_.m.tow_add, 0);
       } else {
         for (int t : it->second.add) Code(d_.m.tow_add, t);
@@ -173,7 +173,7 @@ void WritePlyTowsCsv(const PlyPlan& plan, std::ostream& out) {
       "right_z\n";
   for (const PlyCourse& c : plan.courses) {
     for (const PlyTow& t : c.tows) {
-      const std::size_t i = static_cast<std::size_t>(t.tow);
+      const std::size_t i = static_cast<std::size_t>(t.tow - plan.band.first + 1);
       for (std::size_t g = 0; g < t.laid.size(); ++g) {
         const TowSegment& seg = t.laid[g];
         for (const PlyPoint& p : c.points) {

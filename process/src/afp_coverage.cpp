@@ -217,4 +217,21 @@ PlyCoverage MeasurePly(const CoverageMap& map, const std::vector<Eigen::Vector2d
   return out;
 }
 
+std::unique_ptr<CoverageMap> MapForPly(const geom::Surface& surface,
+                                       const std::vector<Eigen::Vector2d>& boundary_uv,
+                                       const TowLayout& head) {
+  Eigen::Vector2d lo = boundary_uv.front(), hi = lo;
+  for (const auto& p : boundary_uv) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double margin = (head.tows + 1) * head.width_mm;
+  return std::make_unique<CoverageMap>(surface, lo.array() - margin, hi.array() + margin,
+                                       head.width_mm / 4);
+}
+
+PlyCoveragePct CoveragePercent(const PlyCoverage& c) {
+  const double area = c.ply_area_beyond_band_mm2;
+  if (!(area > 0)) return {};
+  return {100.0 * c.bare_beyond_band_mm2 / area, 100.0 * c.doubled_beyond_band_mm2 / area,
+          100.0 * c.laid_outside_beyond_band_mm2 / area};
+}
+
 }  // namespace stitchsim::process

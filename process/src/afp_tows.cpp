@@ -49,8 +49,28 @@ std::uint64_t AllTows(const TowLayout& layout) {
   return layout.tows >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << layout.tows) - 1;
 }
 
+TowBand PlyTowBand(const TowLayout& head, int count) {
+  return TowBand{(head.tows - count) / 2 + 1, count};
+}
+
+double BandCentreOffset(const TowLayout& head, const TowBand& band) {
+  return 0.5 * (TowCentreOffset(head, band.first) + TowCentreOffset(head, band.Last()));
+}
+
+std::uint64_t BandTows(const TowBand& band) {
+  const std::uint64_t ones =
+      band.count >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << band.count) - 1;
+  return ones << (band.first - 1);
+}
+
 TowCross TowsAt(const geom::Surface& surface, const Eigen::Isometry3d& tool_part,
                 const TowLayout& layout, const Eigen::Vector2d* uv_hint, double max_substep_mm) {
+  return TowsAt(surface, tool_part, layout, WholeHead(layout), uv_hint, max_substep_mm);
+}
+
+TowCross TowsAt(const geom::Surface& surface, const Eigen::Isometry3d& tool_part,
+                const TowLayout& layout, const TowBand& band, const Eigen::Vector2d* uv_hint,
+                double max_substep_mm) {
   TowCross out;
   if (!(max_substep_mm > 0)) max_substep_mm = 0.5 * layout.width_mm;
   const Eigen::Vector3d p = tool_part.translation();
@@ -71,15 +91,19 @@ TowCross TowsAt(const geom::Surface& surface, const Eigen::Isometry3d& tool_part
   out.centre_uv = foot.uv;
   out.centre = foot.point;
   const int k = layout.tows;
-  out.boundary_uv.resize(static_cast<std::size_t>(k) + 1);
-  out.boundary.resize(static_cast<std::size_t>(k) + 1);
+  // The head's boundaries lo .. hi are the band's 0 .. band.count.
+  const int lo = band.first - 1, hi = band.Last();
+  out.boundary_uv.resize(static_cast<std::size_t>(band.count) + 1);
+  out.boundary.resize(static_cast<std::size_t>(band.count) + 1);
   const Eigen::Vector3d x = tool_part.linear().col(0);
-  // Walk right from the centre, then left, stopping at every boundary on the way.
+  // Walk right from the centre, then left, stopping at every head boundary on the way (the
+  // same walk whichever band is asked for) until the band's last one.
   for (const double sign : {1.0, -1.0}) {
     geom::SurfaceFoot at = foot;
     double walked = 0.0;  // along the surface from the centre, signed
     Eigen::Vector3d dir = sign * x;
-    for (int b = sign > 0 ? (k + 1) / 2 : k / 2; b >= 0 && b <= k; b += sign > 0 ? 1 : -1) {
+    for (int b = sign > 0 ? (k + 1) / 2 : k / 2; sign > 0 ? b <= hi : b >= lo;
+         b += sign > 0 ? 1 : -1) {
       const double target = (b - 0.5 * k) * layout.width_mm;  // boundary b's offset
       const double step = std::abs(target - walked);
       const geom::SurfaceFoot next = geom::WalkOnSurface(surface, at.uv, dir, step, max_substep_mm);
@@ -88,8 +112,9 @@ TowCross TowsAt(const geom::Surface& surface, const Eigen::Isometry3d& tool_part
       if (step > 0) dir = geom::Tangential(next.point - at.point, surface.Normal(next.uv));
       at = next;
       walked = target;
-      out.boundary_uv[static_cast<std::size_t>(b)] = at.uv;
-      out.boundary[static_cast<std::size_t>(b)] = at.point;
+      if (b < lo || b > hi) continue;
+      out.boundary_uv[static_cast<std::size_t>(b - lo)] = at.uv;
+      out.boundary[static_cast<std::size_t>(b - lo)] = at.point;
     }
   }
   out.ok = true;

@@ -60,6 +60,44 @@ TEST(afp_tows, AroundACylinderTheBoundariesAreArcsOfTheirOffset) {
   }
 }
 
+// Issue 26 item 1: a ply of n tows lays the head's middle n (docs/program-format.md, "Tows"),
+// numbered as the head numbers them; on a plane its boundaries are the head's, at
+// (b - k / 2) w, and its centre is the tool point (k - n even) or w / 2 to its left (odd).
+TEST(afp_tows, ANarrowPlyLaysTheHeadsMiddleTows) {
+  const TowLayout head{16, 6.35};
+  struct Case {
+    int n, first;
+    double centre_mm;
+  };
+  for (const Case c : {Case{16, 1, 0.0}, Case{8, 5, 0.0}, Case{12, 3, 0.0}, Case{7, 5, -3.175},
+                       Case{1, 8, -3.175}, Case{15, 1, -3.175}}) {
+    SCOPED_TRACE(c.n);
+    const TowBand band = PlyTowBand(head, c.n);
+    EXPECT_EQ(band.first, c.first);
+    EXPECT_EQ(band.count, c.n);
+    EXPECT_NEAR(BandCentreOffset(head, band), c.centre_mm, 1e-12);
+    EXPECT_EQ(BandTows(band), ((std::uint64_t{1} << c.n) - 1) << (c.first - 1));
+  }
+  const auto plane = geom::MakePlane(1000, 1000);
+  Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
+  tool.translation() = Eigen::Vector3d(10, 20, 0);  // tool x = +x
+  for (const int n : {7, 8}) {
+    const TowBand band = PlyTowBand(head, n);
+    const TowCross c = TowsAt(*plane, tool, head, band, nullptr);
+    ASSERT_TRUE(c.ok);
+    ASSERT_EQ(c.boundary.size(), static_cast<std::size_t>(n) + 1);
+    for (int j = 0; j <= n; ++j) {
+      const int b = band.first - 1 + j;  // the head's boundary
+      const Eigen::Vector3d want(10 + (b - 8) * 6.35, 20, 0);
+      EXPECT_LT((c.boundary[static_cast<std::size_t>(j)] - want).norm(), 1e-9) << n << " " << j;
+    }
+  }
+  // The band's tows may stay on a plate the head's outer tows overhang.
+  tool.translation() = Eigen::Vector3d(470, 0, 0);
+  EXPECT_FALSE(TowsAt(*plane, tool, head, nullptr).ok);
+  EXPECT_TRUE(TowsAt(*plane, tool, head, PlyTowBand(head, 8), nullptr).ok);
+}
+
 TEST(afp_tows, AToolPointOffTheSurfaceIsNotOk) {
   const auto plane = geom::MakePlane(100, 100);
   Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();

@@ -22,18 +22,6 @@ namespace {
 
 using detail::LaidLine;
 
-// The map over a ply's boundary box, widened by one course and a tow width on every side so
-// material laid just outside is counted.
-std::unique_ptr<process::CoverageMap> MapFor(const geom::Surface& surface,
-                                             const scene::PlySpec& ply,
-                                             const process::TowLayout& layout) {
-  Eigen::Vector2d lo = ply.boundary_uv.front(), hi = lo;
-  for (const auto& p : ply.boundary_uv) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  const double margin = (layout.tows + 1) * layout.width_mm;
-  return std::make_unique<process::CoverageMap>(surface, lo.array() - margin, hi.array() + margin,
-                                                layout.width_mm / 4);
-}
-
 // Halves `img` (each pixel the worst of four) until its longer side fits `max_side`.
 void Shrink(CoverageImage& img, int max_side) {
   constexpr int kRank[] = {0, 1, 4, 5, 2, 3};
@@ -79,7 +67,8 @@ class CoverageRule final : public Rule {
     if (spec.boundary_uv.size() < 3) return;
     Ply& ply = plies_laid_[line->ply];
     if (!ply.map)
-      ply.map = MapFor(laid_->Surface(), spec, laid_->Layout()), ply.first_line = line->source_line;
+      ply.map = process::MapForPly(laid_->Surface(), spec.boundary_uv, laid_->Layout()),
+      ply.first_line = line->source_line;
     for (std::size_t i = 0; i + 1 < line->poses.size(); ++i) {
       const process::TowCross &a = line->poses[i].cross, &b = line->poses[i + 1].cross;
       if (!a.ok || !b.ok) continue;
@@ -103,10 +92,7 @@ class CoverageRule final : public Rule {
       const scene::PlySpec& spec = (*plies_)[static_cast<std::size_t>(index) - 1];
       const process::PlyCoverage cov =
           process::MeasurePly(*ply.map, spec.boundary_uv, laid_->Layout().width_mm);
-      const double area = cov.ply_area_beyond_band_mm2;
-      const double bare = area > 0 ? 100.0 * cov.bare_beyond_band_mm2 / area : 0.0;
-      const double doubled = area > 0 ? 100.0 * cov.doubled_beyond_band_mm2 / area : 0.0;
-      const double outside = area > 0 ? 100.0 * cov.laid_outside_beyond_band_mm2 / area : 0.0;
+      const auto [bare, doubled, outside] = process::CoveragePercent(cov);
       images_.push_back(ImageOf(*ply.map, spec, index));
       const int bare_line = LineNear(ply, cov.worst_bare_uv);
       const int doubled_line = LineNear(ply, cov.worst_doubled_uv);

@@ -125,6 +125,10 @@ class CourseEdgeRule final : public Rule {
       hi = t;
     }
     if (lo == 0) return;  // only bits beyond the head's tows
+    // Under the laid width: the next course but one faces this edge from one course width
+    // beyond the neighbour, and the neighbour on the other side from two (courses of one or two
+    // tows of a narrow ply; issue 26 item 1). From three tows on, two tow widths.
+    reach_mm_ = std::min(2.0, 0.75 * (hi - lo + 1)) * width_mm_;
     for (const detail::LaidPose& pose : line->poses) {
       if (!pose.cross.ok) {
         for (Side& s : sides_) s.have = false;
@@ -159,7 +163,7 @@ class CourseEdgeRule final : public Rule {
     if (s.have && (p - s.last).norm() < 0.75 * width_mm_) pending_.push_back({s.last, p, outward});
     s.have = true;
     s.last = p;
-    const std::optional<double> d = FacingDistance(hash_, p, outward, along, 2.0 * width_mm_);
+    const std::optional<double> d = FacingDistance(hash_, p, outward, along, reach_mm_);
     if (!d) return;
     const double value = std::max(0.0, gap_ ? *d : -*d);
     if (value >= kDrawnFromMm) drawn_.Add(p);
@@ -229,6 +233,7 @@ class CourseEdgeRule final : public Rule {
   detail::ThinnedPoints drawn_;  ///< edge points with a gap (overlap) of kDrawnFromMm or more
   bool gap_;
   double width_mm_;
+  double reach_mm_ = 0.0;                   ///< how far across an edge a facing one is looked for
   std::vector<geom::Polygon2> boundaries_;  ///< the scene's plies, (u, v)
   EdgeHash hash_;                           ///< the ply's earlier courses
   std::vector<EdgeSegment> pending_;        ///< the laying course's edges

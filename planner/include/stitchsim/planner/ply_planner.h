@@ -35,13 +35,17 @@ struct PlyPlanOptions {
 };
 
 /// One point of a course: the tool pose (z = surface normal towards the head, y = the course
-/// direction, x = y cross z) and the tow boundaries there (process::TowsAt).
+/// direction, x = y cross z) and the boundaries of the ply's band of tows there
+/// (process::TowsAt with the plan's band).
 struct PlyPoint {
   double s_mm = 0.0;  ///< course length from the course's first point
   Eigen::Vector2d uv = Eigen::Vector2d::Zero();
   Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
-  std::vector<Eigen::Vector3d> boundary;  ///< k + 1 tow boundaries, left to right
-  bool event = false;                     ///< inserted at a cut / add position
+  /// band.count + 1 boundaries, left to right: boundary j is the left edge of head tow
+  /// band.first + j.
+  std::vector<Eigen::Vector3d> boundary;
+  std::vector<Eigen::Vector2d> boundary_uv;  ///< the same in (u, v)
+  bool event = false;                        ///< inserted at a cut / add position
 };
 
 /// A tow's material along a course: [start, end] in course length.
@@ -51,7 +55,7 @@ struct TowSegment {
 };
 
 struct PlyTow {
-  int tow = 1;                      ///< 1-based, 1 leftmost
+  int tow = 1;                      ///< as the head numbers it (1 leftmost), in the band
   std::vector<TowSegment> laid;     ///< in order along the course
   double min_radius_mm = INFINITY;  ///< geodesic radius of its centre line where laid
 };
@@ -60,7 +64,7 @@ struct PlyCourse {
   int number = 1;                ///< 1-based, right to left across the ply
   int offset_index = 0;          ///< 0 = the reference course; > 0 to its left (N x T)
   std::vector<PlyPoint> points;  ///< centre points from the first add to the last cut
-  std::vector<PlyTow> tows;      ///< every tow of the layout (some may lay nothing)
+  std::vector<PlyTow> tows;      ///< every tow of the band (some may lay nothing)
   double Start() const { return points.empty() ? 0.0 : points.front().s_mm; }
   double End() const { return points.empty() ? 0.0 : points.back().s_mm; }
 };
@@ -75,7 +79,7 @@ struct CourseSeam {
 };
 
 struct PlyFinding {
-  std::string code;  ///< "ply-steering-radius"
+  std::string code;  ///< "ply-steering-radius", "ply-coverage"
   std::string message;
 };
 
@@ -84,7 +88,10 @@ struct PlyPlan {
   int ply_index = 1;  ///< 1-based position in the scene's plies (M70 P)
   double angle_rad = 0.0;
   double coverage = 0.5;
-  process::TowLayout layout;
+  process::TowLayout layout;  ///< the head's tows
+  /// The head's tows the ply lays (process::PlyTowBand of the ply's `tows:`); the course
+  /// curves are the tool point's paths, the band's centre BandCentreOffset to their side.
+  process::TowBand band;
   std::vector<PlyCourse> courses;  ///< only courses that lay material, numbered 1..N
   std::vector<CourseSeam> seams;
   int tow_segments = 0;  ///< laid segments over all courses and tows
@@ -92,12 +99,21 @@ struct PlyPlan {
   double min_radius_mm = INFINITY;
   double max_gap_mm = 0.0;
   double max_overlap_mm = 0.0;
-  double laid_length_mm = 0.0;       ///< sum of the courses' lay-up lengths
+  double laid_length_mm = 0.0;  ///< sum of the courses' lay-up lengths
+  /// The plan's own afp.coverage figures: percent of the ply's area beyond the band of one tow
+  /// width along its boundary left bare, covered twice, and laid outside the ply.
+  double bare_pct = 0.0;
+  double doubled_pct = 0.0;
+  double laid_outside_pct = 0.0;
   std::vector<PlyFinding> findings;  ///< empty: the cell can lay it as planned
 };
 
 /// Plans `ply` (one of scene.plies). Diagnostics ("plan-...") for a non-AFP head, a fibre
-/// axis that does not reach the ply, a rule not implemented, too many courses.
+/// axis that does not reach the ply, a rule not implemented, too many courses, and courses the
+/// ply needs whose tows would leave the surface (plan-ply-off-surface: part of a course, or
+/// whole courses when the plan without them leaves more of the ply bare than afp.coverage
+/// allows). A plan that fails afp.coverage for any other reason carries a "ply-coverage"
+/// finding: PlanPly never returns a plan without findings that its own coverage rule fails.
 std::optional<PlyPlan> PlanPly(const scene::Scene& scene, const scene::PlySpec& ply,
                                const PlyPlanOptions& options, DiagnosticSink& sink);
 

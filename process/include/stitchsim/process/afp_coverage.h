@@ -10,9 +10,11 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "stitchsim/geom/surface.h"
+#include "stitchsim/process/afp_tows.h"
 
 namespace stitchsim::process {
 
@@ -82,6 +84,22 @@ struct PlyCoverage {
 /// Measures `map` against the closed polygon `boundary_uv` with a band of `band` along it.
 PlyCoverage MeasurePly(const CoverageMap& map, const std::vector<Eigen::Vector2d>& boundary_uv,
                        double band);
+
+/// The map a ply is measured on (the afp.coverage rule, and the ply planner's check of its own
+/// plan): the ply's (u, v) box widened by the head's width and a tow on every side, so that
+/// material laid just outside is counted; cells of a quarter tow width.
+std::unique_ptr<CoverageMap> MapForPly(const geom::Surface& surface,
+                                       const std::vector<Eigen::Vector2d>& boundary_uv,
+                                       const TowLayout& head);
+
+/// A ply's figures as afp.coverage judges them: percent of the ply's area beyond the band of
+/// one tow width along its boundary.
+struct PlyCoveragePct {
+  double bare = 0.0;
+  double doubled = 0.0;
+  double laid_outside = 0.0;
+};
+PlyCoveragePct CoveragePercent(const PlyCoverage& coverage);
 
 /// Per cell of `map`'s grid, the cell's relation to the polygon: 0 outside, 1 inside in the
 /// band, 2 inside beyond the band, 3 outside in the band (row-major, iv * nu + iu).

@@ -30,6 +30,31 @@ double TowCentreOffset(const TowLayout& layout, int tow);
 /// Bit mask of the layout's tows (bit i = tow i + 1).
 std::uint64_t AllTows(const TowLayout& layout);
 
+/// Which of the head's tows a programme of a ply laying `count` tows uses, numbered as the head
+/// numbers them (docs/program-format.md, "Tows"): the `count` adjacent tows in the middle of the
+/// head, first = (k - count) / 2 + 1 rounded down. When k - count is odd the one spare tow more
+/// is on the right, and the band's centre lies w / 2 to the left (-x) of the tool point; the
+/// planner lays the band there and the verifier, which places the head's tows by their
+/// numbers, finds it there. Nothing but the tow numbers in M62 carries the band.
+struct TowBand {
+  int first = 1;   ///< head number of the band's leftmost tow
+  int count = 16;  ///< tows in the band
+  int Last() const { return first + count - 1; }
+};
+
+/// The band of `count` tows (1 .. k) on the head `head`.
+TowBand PlyTowBand(const TowLayout& head, int count);
+
+/// Every tow of the head.
+inline TowBand WholeHead(const TowLayout& head) { return TowBand{1, head.tows}; }
+
+/// Lateral offset of the band's centre from the tool point along tool x, mm (0, or -w / 2 for
+/// PlyTowBand with k - count odd).
+double BandCentreOffset(const TowLayout& head, const TowBand& band);
+
+/// Bit mask of the band's tows as the head numbers them (bit t - 1 = head tow t).
+std::uint64_t BandTows(const TowBand& band);
+
 /// The k + 1 tow boundaries across the roller at one pose, left to right: boundary b is the
 /// left edge of tow b + 1 (b = k: the right edge of tow k), walked along the surface from the
 /// tool point's foot. `ok` false if the tool point's foot or a walk leaves the surface.
@@ -50,6 +75,13 @@ struct TowCross {
 /// than 3e-5 mm, and planner and verifier both use the default).
 TowCross TowsAt(const geom::Surface& surface, const Eigen::Isometry3d& tool_part,
                 const TowLayout& layout, const Eigen::Vector2d* uv_hint,
+                double max_substep_mm = 0.0);
+
+/// The boundaries of `band`'s tows only: band.count + 1, boundary j the left edge of head tow
+/// band.first + j (the same points as the whole head's boundaries band.first - 1 ..
+/// band.Last(); tows outside the band may leave the surface).
+TowCross TowsAt(const geom::Surface& surface, const Eigen::Isometry3d& tool_part,
+                const TowLayout& layout, const TowBand& band, const Eigen::Vector2d* uv_hint,
                 double max_substep_mm = 0.0);
 
 }  // namespace stitchsim::process
