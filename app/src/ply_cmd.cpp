@@ -105,7 +105,8 @@ void AddPlanPlyCommand(CLI::App& plan, int& exit_code) {
   CLI::App* cmd = plan.add_subcommand(
       "ply",
       "A fibre-placement ply (seed 002): courses offset across the ply, tows cut at its "
-      "boundary");
+      "boundary. Exit 1 (programme written) when the plan fails the head's steering limit or "
+      "afp.coverage; exit 2 when courses the ply needs would leave the surface (docs/afp.md)");
   cmd->add_option("--scene", a->scene, "Scene YAML file (AFP head, `plies:`)")->required();
   cmd->add_option("--ply", a->plies,
                   "Ply name (the scene's `plies:`); repeat it to write several plies into one "
