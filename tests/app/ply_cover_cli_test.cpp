@@ -175,22 +175,16 @@ TEST(PlanPlyNarrow, PlyTheSurfaceHasNoRoomForIsExit2WithItsBareFigure) {
   EXPECT_EQ(verify.exit_code, 0) << verify.out << verify.err;
 }
 
-// Issue 26 item 2: every ply the bundled scenes hold, and the plies the tests build (the narrow
-// plies above, ply_test's 45 deg rectangle under each coverage policy, the panel's plies as
-// laminate family plies), planned one by one: exit 0 verifies clean; exit 1 says why (a
-// finding); exit 2 names a line.
+// Issue 26 item 2: every ply the bundled scenes hold, and the plies the tests build (ply_test's
+// 45 deg rectangle under each coverage policy, the panel's plies as laminate family plies,
+// ply_scene_test's plies; the narrow plies above verify clean there), planned one by one: exit 0
+// verifies clean; exit 1 says why (a finding); exit 2 names a line.
 TEST(PlanPlyNarrow, EveryPlyOfTheScenesAndTestsThatPlansVerifiesClean) {
   const fs::path dir = testing::ScratchDir() / "every";
   fs::create_directories(dir);
   std::vector<fs::path> scenes;
   for (const auto& e : fs::directory_iterator(kSource / "scenes"))
     if (e.path().extension() == ".yaml") scenes.push_back(e.path());
-  for (const bool cylinder : {false, true}) {
-    for (const int tows : {16, 12, 8, 7, 1}) {
-      scenes.push_back(dir / ((cylinder ? "cyl" : "plane") + std::to_string(tows) + ".yaml"));
-      std::ofstream(scenes.back()) << PlyScene(cylinder, tows, 20 * kTowMm, "[600, 500]");
-    }
-  }
   for (const int pct : {0, 50, 100}) {
     std::string text = PlyScene(false, 0, 100, "[600, 400]");
     text.replace(text.find("angle_deg: 0"), 12, "angle_deg: 45");
@@ -203,6 +197,19 @@ TEST(PlanPlyNarrow, EveryPlyOfTheScenesAndTestsThatPlansVerifiesClean) {
     laminate.replace(at, 12, "rule: laminate_family");
   scenes.push_back(dir / "laminate_panel.yaml");
   std::ofstream(scenes.back()) << laminate;
+  // tests/scene/ply_scene_test.cpp, ValuesAreRead: 8 tows at 45 deg by the paper's method,
+  // coverage 100; a triangle from a 3D boundary, coverage 0.
+  scenes.push_back(dir / "scene_values.yaml");
+  std::ofstream(scenes.back())
+      << "stitchsim_scene: 1\nname: plies\nunits: mm\nhead: afp\npart:\n  mount: table\n"
+         "  position: [0, -400, 50]\nsurface:\n  type: plane\n  size: [600, 400]\npreform:\n"
+         "  thickness: 2\npaths:\n  - {name: row, type: line, from: [0, 0], to: [100, 0]}\n"
+         "plies:\n  - name: skin_45\n    angle_deg: 45\n    reference:\n      origin: [10, 20, "
+         "50]\n"
+         "      direction: [0, 2, 0]\n    boundary_uv: [[0, 0], [0, 100], [200, 100], [200, 0]]\n"
+         "    rule: offset\n    method: paper\n    coverage: 100\n    tows: 8\n"
+         "  - {name: b, reference: {origin: [0, 0, 50], direction: [1, 0, 0]}, boundary: [[0, 0, "
+         "30], [100, 0, 30], [100, 50, 30]], coverage: 0}\n";
 
   int planned = 0;
   for (const fs::path& file : scenes) {
@@ -228,7 +235,7 @@ TEST(PlanPlyNarrow, EveryPlyOfTheScenesAndTestsThatPlansVerifiesClean) {
       EXPECT_EQ(verify.exit_code, 0) << verify.out << verify.err;
     }
   }
-  EXPECT_GE(planned, 26 + 10 + 3 + 2);  // 26 plies in scenes/ when this was written
+  EXPECT_GE(planned, 26 + 3 + 2 + 2);  // 26 plies in scenes/ when this was written
 }
 
 }  // namespace

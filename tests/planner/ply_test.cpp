@@ -227,7 +227,7 @@ Coverage Measure(const PlyPlan& plan, const std::vector<Eigen::Vector2d>& bounda
   std::map<std::pair<long, long>, bool> covered;
   for (const PlyCourse& c : plan.courses) {
     for (const PlyTow& t : c.tows) {
-      const std::size_t i = static_cast<std::size_t>(t.tow);
+      const std::size_t i = static_cast<std::size_t>(t.tow - plan.band.first + 1);
       for (std::size_t j = 1; j < c.points.size(); ++j) {
         const PlyPoint& a = c.points[j - 1];
         const PlyPoint& b = c.points[j];
