@@ -40,8 +40,9 @@ struct PlyPoint {
   double s_mm = 0.0;  ///< course length from the course's first point
   Eigen::Vector2d uv = Eigen::Vector2d::Zero();
   Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
-  std::vector<Eigen::Vector3d> boundary;  ///< k + 1 tow boundaries, left to right
-  bool event = false;                     ///< inserted at a cut / add position
+  std::vector<Eigen::Vector3d> boundary;     ///< k + 1 tow boundaries, left to right
+  std::vector<Eigen::Vector2d> boundary_uv;  ///< the same in (u, v)
+  bool event = false;                        ///< inserted at a cut / add position
 };
 
 /// A tow's material along a course: [start, end] in course length.
@@ -51,9 +52,11 @@ struct TowSegment {
 };
 
 struct PlyTow {
-  int tow = 1;                      ///< 1-based, 1 leftmost
-  std::vector<TowSegment> laid;     ///< in order along the course
-  double min_radius_mm = INFINITY;  ///< geodesic radius of its centre line where laid
+  int tow = 1;                   ///< 1-based, 1 leftmost
+  std::vector<TowSegment> laid;  ///< in order along the course
+  /// Smallest steering radius of its centre line where laid (process/afp_steering.h: the
+  /// definition afp.steering_radius applies to the programme); infinity: straight or too short.
+  double min_radius_mm = INFINITY;
 };
 
 struct PlyCourse {
