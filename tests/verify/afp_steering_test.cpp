@@ -149,6 +149,48 @@ TEST(AfpSteering, CourseOfRadius500FiresOnEveryTowOnItsClosedFormRadius) {
   }
 }
 
+// One 200 mm move along which the head turns 20 deg (the executor slerps the heading): the
+// tool point runs straight but each tow sweeps a curve, c(f) = (L f, 0) + d (sin p, -cos p)
+// with p = 20 deg f and d its offset; the rule divides the move and reads that curve's radius,
+// |c'|^3 / |c' x c''|, here computed in closed form over the measured stretch (a half window
+// of the tow from each end).
+TEST(AfpSteering, AHeadTurningAlongOneLongMoveSteersItsTows) {
+  const auto scene = AfpScene(geom::MakePlane(4000, 4000));
+  const double length = 200.0, turn = 20.0 * kPi / 180.0;
+  const Eigen::Vector2d start(0, 0), end(length, 0);
+  const Report report = RunLines(
+      *scene,
+      {LayLine(10, ToolAt(*scene->surface, start, Eigen::Vector2d(1, 0)),
+               ToolAt(*scene->surface, end, Eigen::Vector2d(std::cos(turn), std::sin(turn))))});
+  const RuleSummary* rule = RuleOf(report, "afp.steering_radius");
+  ASSERT_NE(rule, nullptr);
+  for (int t = 1; t <= 16; ++t) {
+    const double d = (t - 8.5) * kTowWidth;
+    auto velocity = [&](double f) {
+      const double p = turn * f;
+      return Eigen::Vector2d(length + d * turn * std::cos(p), d * turn * std::sin(p));
+    };
+    auto radius = [&](double f) {
+      const double p = turn * f;
+      const Eigen::Vector2d v = velocity(f);
+      const Eigen::Vector2d a(-d * turn * turn * std::sin(p), d * turn * turn * std::cos(p));
+      return std::pow(v.norm(), 3) / std::abs(v.x() * a.y() - v.y() * a.x());
+    };
+    const int n = 20000;
+    double total = 0.0;
+    for (int i = 0; i < n; ++i) total += velocity((i + 0.5) / n).norm() / n;
+    double expected = INFINITY, arc = 0.0;
+    for (int i = 0; i <= n; ++i) {
+      const double f = static_cast<double>(i) / n;
+      if (arc >= 25.0 && total - arc >= 25.0) expected = std::min(expected, radius(f));
+      arc += velocity((i + 0.5) / n).norm() / n;
+    }
+    const SubjectFigure& figure = rule->subjects[static_cast<std::size_t>(t) - 1];
+    ASSERT_TRUE(figure.worst_value) << "tow " << t;
+    EXPECT_NEAR(*figure.worst_value, expected, 0.01 * expected) << "tow " << t;
+  }
+}
+
 TEST(AfpSteering, LinesOutsideACourseLayNothing) {
   const auto scene = AfpScene(geom::MakePlane(4000, 4000));
   auto lines = CircleCourse(*scene->surface, 500, 20.0, 10);
