@@ -6,36 +6,29 @@
 #include <algorithm>
 #include <cmath>
 
+#include "detail/smooth_curve.h"
 #include "stitchsim/geom/polygon2.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/geom/surface_walk.h"
+#include "stitchsim/process/afp_steering.h"
 
 namespace stitchsim::planner {
 namespace {
 
-/// The centre curve as a function of its length (chords of the dense curve).
+/// The centre curve as a C2 function of its length (detail::SmoothCurve): poses along it
+/// have no kinks, so the tows steer only where the curve does.
 class CentreLine {
  public:
-  CentreLine(const geom::Surface& s, const SurfaceCurve& c) : s_(s), c_(c) {
-    length_.push_back(0.0);
-    for (std::size_t i = 1; i < c.size(); ++i)
-      length_.push_back(length_.back() + (c[i].position - c[i - 1].position).norm());
-  }
-  double Length() const { return length_.back(); }
+  CentreLine(const geom::Surface& s, const SurfaceCurve& c) : s_(s), curve_(s, c) {}
+  double Length() const { return curve_.Length(); }
 
   /// The point at length s: uv and the tool frame (z normal, y along the course).
   PlyPoint At(double s) const {
-    s = std::clamp(s, 0.0, Length());
-    const auto it = std::upper_bound(length_.begin(), length_.end(), s);
-    const std::size_t i = std::min<std::size_t>(
-        c_.size() - 2, static_cast<std::size_t>(std::max<long>(0, it - length_.begin() - 1)));
-    const double span = length_[i + 1] - length_[i];
-    const double f = span > 0.0 ? (s - length_[i]) / span : 0.0;
     PlyPoint p;
-    p.s_mm = s;
-    p.uv = (1.0 - f) * c_[i].uv + f * c_[i + 1].uv;
+    p.s_mm = std::clamp(s, 0.0, Length());
+    p.uv = curve_.Uv(p.s_mm);
     const Eigen::Vector3d n = s_.Normal(p.uv).normalized();
-    const Eigen::Vector3d t = (1.0 - f) * c_[i].tangent + f * c_[i + 1].tangent;
+    const Eigen::Vector3d t = s_.Jacobian(p.uv) * curve_.Slope(p.s_mm);
     p.tool.linear() = geom::FrameFromNormalAndDirection(n, geom::Tangential(t, n))
                           .value_or(Eigen::Matrix3d::Identity());
     p.tool.translation() = s_.Point(p.uv);
@@ -44,8 +37,7 @@ class CentreLine {
 
  private:
   const geom::Surface& s_;
-  const SurfaceCurve& c_;
-  std::vector<double> length_;
+  detail::SmoothCurve curve_;
 };
 
 /// Tow states at one point: bit t-1 set when the band's tow t lays material there.
@@ -111,32 +103,23 @@ struct Event {
   bool add = true;
 };
 
-/// Geodesic radius at b of the curve a, b, c (projected into the plane normal to n).
-double GeodesicRadius(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-                      const Eigen::Vector3d& n) {
-  Eigen::Vector3d u = b - a, v = c - b;
-  u -= u.dot(n) * n;
-  v -= v.dot(n) * n;
-  const double k2 = 2.0 * std::abs(u.cross(v).dot(n));
-  const double den = u.norm() * v.norm() * (u + v).norm();
-  if (k2 <= 1e-15 * den || den <= 0.0) return INFINITY;
-  return den / k2;
-}
-
-void TowRadii(PlyCourse& course, const process::TowBand& band) {
+/// Each tow's smallest steering radius where laid: process::SteeringWindow over the tow
+/// centres at the course's points from its add to its cut, as afp.steering_radius reads them
+/// at the programme's poses.
+void TowRadii(const geom::Surface& surface, PlyCourse& course, const process::TowBand& band) {
+  process::SteeringWindow window;
+  std::vector<process::SteeringWindow::Radius> radii;
   for (PlyTow& tow : course.tows) {
     const std::size_t i = static_cast<std::size_t>(tow.tow - band.first + 1);
-    std::vector<const PlyPoint*> pts;
-    auto centre = [&](const PlyPoint* p) { return 0.5 * (p->boundary[i - 1] + p->boundary[i]); };
     for (const TowSegment& seg : tow.laid) {
-      pts.clear();
-      for (const PlyPoint& p : course.points)
-        if (!p.event && p.s_mm > seg.start_mm && p.s_mm < seg.end_mm) pts.push_back(&p);
-      for (std::size_t j = 1; j + 1 < pts.size(); ++j) {
-        tow.min_radius_mm = std::min(
-            tow.min_radius_mm, GeodesicRadius(centre(pts[j - 1]), centre(pts[j]),
-                                              centre(pts[j + 1]), pts[j]->tool.linear().col(2)));
+      window.Reset();
+      radii.clear();
+      for (const PlyPoint& p : course.points) {
+        if (p.s_mm < seg.start_mm || p.s_mm > seg.end_mm) continue;
+        const Eigen::Vector2d uv = 0.5 * (p.boundary_uv[i - 1] + p.boundary_uv[i]);
+        window.Add(surface.Point(uv), surface.Normal(uv), 0, radii);
       }
+      for (const auto& r : radii) tow.min_radius_mm = std::min(tow.min_radius_mm, r.radius_mm);
     }
   }
 }
@@ -148,7 +131,8 @@ std::optional<PlyCourse> PlanCourse(const CourseContext& ctx, const SurfaceCurve
   if (centre.size() < 2) return std::nullopt;
   const CourseBuilder b(ctx, centre);
   const double length = b.Line().Length();
-  const double spacing = ctx.options.point_spacing_mm;
+  // Poses at most a steering half window apart: afp.steering_radius measures at the poses.
+  const double spacing = std::min(ctx.options.point_spacing_mm, process::kSteeringHalfWindowMm);
   const int segments = std::max(1, static_cast<int>(std::ceil(length / spacing - 1e-9)));
   std::vector<Sample> samples;
   samples.reserve(static_cast<std::size_t>(segments) + 1);
@@ -220,7 +204,7 @@ std::optional<PlyCourse> PlanCourse(const CourseContext& ctx, const SurfaceCurve
     std::erase_if(tow.laid, [](const TowSegment& g) { return g.end_mm <= g.start_mm; });
     course.tows.push_back(std::move(tow));
   }
-  TowRadii(course, ctx.band);
+  TowRadii(ctx.surface, course, ctx.band);
   return course;
 }
 

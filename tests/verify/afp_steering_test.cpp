@@ -1,7 +1,7 @@
 // afp.steering_radius against closed forms: a circular course of radius R on a plane steers
 // its inner tow on R - 7.5 w and its outer on R + 7.5 w; a helix on a cylinder (a geodesic)
 // does not steer though it is curved in space; a course of R = 500 mm (below the head's
-// 635 mm) fires on its first laying line.
+// 635 mm) fires on every tow, on the line ending at each measured vertex.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -103,17 +103,92 @@ TEST(AfpSteering, HelixOnACylinderIsAGeodesicAndDoesNotSteer) {
   EXPECT_EQ(rule->errors, 0);
 }
 
-TEST(AfpSteering, CourseOfRadius500FiresOnItsFirstLayingLine) {
+// A course of R = 500 mm (below the head's 635 mm) written as the ply planner writes poses
+// (5 mm apart) and as a coarse hand programme (20 mm): every tow fires, each on its circle
+// R + (t - 8.5) w to 0.1 %; a finding on every line whose end is a measured vertex (a half
+// window, 25 mm of the tow, from both ends of the course for some tow).
+TEST(AfpSteering, CourseOfRadius500FiresOnEveryTowOnItsClosedFormRadius) {
   const auto scene = AfpScene(geom::MakePlane(4000, 4000));
-  const Report report = RunLines(*scene, CircleCourse(*scene->surface, 500, 20.0, 10));
+  const double r = 500.0, half_window = 25.0;
+  for (const double chord : {5.0, 20.0}) {
+    const int count = static_cast<int>(std::lround(300.0 / chord));
+    const Report report = RunLines(*scene, CircleCourse(*scene->surface, r, chord, count));
+    const RuleSummary* rule = RuleOf(report, "afp.steering_radius");
+    ASSERT_NE(rule, nullptr);
+    ASSERT_EQ(rule->subjects.size(), 16U);
+    for (int t = 1; t <= 16; ++t) {
+      const double expected = r + (t - 8.5) * kTowWidth;
+      const SubjectFigure& f = rule->subjects[static_cast<std::size_t>(t) - 1];
+      ASSERT_TRUE(f.worst_value) << "tow " << t;
+      EXPECT_NEAR(*f.worst_value, expected, 1e-3 * expected) << "chord " << chord << " tow " << t;
+      EXPECT_LT(*f.worst_value, *rule->error_limit);
+    }
+    // Vertex j (the end of line 10 + j - 1) is measured for tow t when the tow's chords reach
+    // a half window both ways: j c_t >= 25 and (count - j) c_t >= 25.
+    std::vector<int> expected_lines;
+    const double step = 2.0 * std::asin(0.5 * chord / r);
+    for (int j = 1; j < count; ++j) {
+      for (int t = 1; t <= 16; ++t) {
+        const double c = 2.0 * (r + (t - 8.5) * kTowWidth) * std::sin(0.5 * step);
+        if (j * c >= half_window - 1e-9 && (count - j) * c >= half_window - 1e-9) {
+          expected_lines.push_back(10 + j - 1);
+          break;
+        }
+      }
+    }
+    std::string seen;
+    for (const auto& f : rule->findings) seen += " " + std::to_string(f.line);
+    ASSERT_EQ(rule->findings.size(), expected_lines.size()) << "chord " << chord << ":" << seen;
+    EXPECT_EQ(rule->errors, static_cast<long>(expected_lines.size()));
+    for (std::size_t i = 0; i < expected_lines.size(); ++i) {
+      EXPECT_EQ(rule->findings[i].line, expected_lines[i]);
+      EXPECT_EQ(rule->findings[i].limit, 635.0);
+    }
+    const double inner = r - 7.5 * kTowWidth;
+    EXPECT_NEAR(*rule->worst_value, inner, 1e-3 * inner);
+  }
+}
+
+// One 200 mm move along which the head turns 20 deg (the executor slerps the heading): the
+// tool point runs straight but each tow sweeps a curve, c(f) = (L f, 0) + d (sin p, -cos p)
+// with p = 20 deg f and d its offset; the rule divides the move and reads that curve's radius,
+// |c'|^3 / |c' x c''|, here computed in closed form over the measured stretch (a half window
+// of the tow from each end).
+TEST(AfpSteering, AHeadTurningAlongOneLongMoveSteersItsTows) {
+  const auto scene = AfpScene(geom::MakePlane(4000, 4000));
+  const double length = 200.0, turn = 20.0 * kPi / 180.0;
+  const Eigen::Vector2d start(0, 0), end(length, 0);
+  const Report report = RunLines(
+      *scene,
+      {LayLine(10, ToolAt(*scene->surface, start, Eigen::Vector2d(1, 0)),
+               ToolAt(*scene->surface, end, Eigen::Vector2d(std::cos(turn), std::sin(turn))))});
   const RuleSummary* rule = RuleOf(report, "afp.steering_radius");
   ASSERT_NE(rule, nullptr);
-  EXPECT_EQ(rule->errors, 10);
-  ASSERT_FALSE(rule->findings.empty());
-  EXPECT_EQ(rule->findings.front().line, 10);
-  EXPECT_EQ(rule->findings.front().subject, "tow 1");
-  EXPECT_NEAR(rule->findings.front().value, 500 - 7.5 * kTowWidth, 0.5);
-  EXPECT_EQ(rule->findings.front().limit, 635.0);
+  for (int t = 1; t <= 16; ++t) {
+    const double d = (t - 8.5) * kTowWidth;
+    auto velocity = [&](double f) {
+      const double p = turn * f;
+      return Eigen::Vector2d(length + d * turn * std::cos(p), d * turn * std::sin(p));
+    };
+    auto radius = [&](double f) {
+      const double p = turn * f;
+      const Eigen::Vector2d v = velocity(f);
+      const Eigen::Vector2d a(-d * turn * turn * std::sin(p), d * turn * turn * std::cos(p));
+      return std::pow(v.norm(), 3) / std::abs(v.x() * a.y() - v.y() * a.x());
+    };
+    const int n = 20000;
+    double total = 0.0;
+    for (int i = 0; i < n; ++i) total += velocity((i + 0.5) / n).norm() / n;
+    double expected = INFINITY, arc = 0.0;
+    for (int i = 0; i <= n; ++i) {
+      const double f = static_cast<double>(i) / n;
+      if (arc >= 25.0 && total - arc >= 25.0) expected = std::min(expected, radius(f));
+      arc += velocity((i + 0.5) / n).norm() / n;
+    }
+    const SubjectFigure& figure = rule->subjects[static_cast<std::size_t>(t) - 1];
+    ASSERT_TRUE(figure.worst_value) << "tow " << t;
+    EXPECT_NEAR(*figure.worst_value, expected, 0.01 * expected) << "tow " << t;
+  }
 }
 
 TEST(AfpSteering, LinesOutsideACourseLayNothing) {

@@ -55,9 +55,11 @@ struct TowSegment {
 };
 
 struct PlyTow {
-  int tow = 1;                      ///< as the head numbers it (1 leftmost), in the band
-  std::vector<TowSegment> laid;     ///< in order along the course
-  double min_radius_mm = INFINITY;  ///< geodesic radius of its centre line where laid
+  int tow = 1;                   ///< as the head numbers it (1 leftmost), in the band
+  std::vector<TowSegment> laid;  ///< in order along the course
+  /// Smallest steering radius of its centre line where laid (process/afp_steering.h: the
+  /// definition afp.steering_radius applies to the programme); infinity: straight or too short.
+  double min_radius_mm = INFINITY;
 };
 
 struct PlyCourse {
