@@ -73,6 +73,7 @@ TowCross TowsAt(const geom::Surface& surface, const Eigen::Isometry3d& tool_part
   const int k = layout.tows;
   out.boundary_uv.resize(static_cast<std::size_t>(k) + 1);
   out.boundary.resize(static_cast<std::size_t>(k) + 1);
+  out.across.resize(static_cast<std::size_t>(k) + 1);
   const Eigen::Vector3d x = tool_part.linear().col(0);
   // Walk right from the centre, then left, stopping at every boundary on the way.
   for (const double sign : {1.0, -1.0}) {
@@ -84,12 +85,13 @@ TowCross TowsAt(const geom::Surface& surface, const Eigen::Isometry3d& tool_part
       const double step = std::abs(target - walked);
       const geom::SurfaceFoot next = geom::WalkOnSurface(surface, at.uv, dir, step, max_substep_mm);
       if (!next.converged || !surface.Domain().Contains(next.uv, 1e-6)) return out;
-      // Keep walking outwards: the last chord laid into the tangent plane where it ends.
-      if (step > 0) dir = geom::Tangential(next.point - at.point, surface.Normal(next.uv));
+      // Keep walking outwards along the same geodesic.
+      dir = next.tangent;
       at = next;
       walked = target;
       out.boundary_uv[static_cast<std::size_t>(b)] = at.uv;
       out.boundary[static_cast<std::size_t>(b)] = at.point;
+      out.across[static_cast<std::size_t>(b)] = sign * at.tangent;
     }
   }
   out.ok = true;

@@ -39,6 +39,10 @@ struct TowCross {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector2d> boundary_uv;  ///< k + 1
   std::vector<Eigen::Vector3d> boundary;     ///< k + 1, on the surface
+  /// k + 1 unit tangents at the boundaries: the direction of tool x at the foot carried along
+  /// the walk (across the course, left to right; the normal to a boundary's line on the
+  /// surface where the walk crosses it at a right angle).
+  std::vector<Eigen::Vector3d> across;
 };
 
 /// The tow boundaries at `tool_part` (tool pose, part frame, mm). `uv_hint`: a parameter near
