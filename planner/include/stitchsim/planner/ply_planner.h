@@ -40,8 +40,10 @@ struct PlyPoint {
   double s_mm = 0.0;  ///< course length from the course's first point
   Eigen::Vector2d uv = Eigen::Vector2d::Zero();
   Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
-  std::vector<Eigen::Vector3d> boundary;  ///< k + 1 tow boundaries, left to right
-  bool event = false;                     ///< inserted at a cut / add position
+  std::vector<Eigen::Vector3d> boundary;     ///< k + 1 tow boundaries, left to right
+  std::vector<Eigen::Vector2d> boundary_uv;  ///< their surface parameters
+  std::vector<Eigen::Vector3d> across;       ///< unit tangents there, left to right (TowCross)
+  bool event = false;                        ///< inserted at a cut / add position
 };
 
 /// A tow's material along a course: [start, end] in course length.
