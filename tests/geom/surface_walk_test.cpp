@@ -135,8 +135,8 @@ TEST(SphereGeodesic, WalkFollowsTheGreatCircle) {
   }
 }
 
-// Second order elsewhere: halving the substep quarters the error on a saddle, and the error
-// stays small (a height field z = (x^2 - y^2) / 400, compared with a much finer walk).
+// Second order (at least) elsewhere: halving the substep cuts the error at least threefold on
+// a saddle (a height field z = (x^2 - y^2) / 400, compared with a much finer walk).
 TEST(SaddleGeodesic, WalkConvergesWithTheSubstep) {
   Eigen::Matrix4d c = Eigen::Matrix4d::Zero();
   c(2, 0) = 1.0 / 400.0;
@@ -147,9 +147,10 @@ TEST(SaddleGeodesic, WalkConvergesWithTheSubstep) {
   const Eigen::Vector3d fine = WalkOnSurface(*s, uv0, dir, 80.0, 0.01).point;
   const double e1 = (WalkOnSurface(*s, uv0, dir, 80.0, 1.0).point - fine).norm();
   const double e2 = (WalkOnSurface(*s, uv0, dir, 80.0, 0.5).point - fine).norm();
-  EXPECT_LT(e1, 1e-2);
-  EXPECT_GT(e1 / e2, 3.0);
-  EXPECT_LT(e1 / e2, 5.0);
+  EXPECT_LT(e1, 1e-3);
+  EXPECT_GT(e1 / e2, 3.0) << e1 << " " << e2;
+  RecordProperty("error_1mm", ::testing::PrintToString(e1));
+  RecordProperty("error_half_mm", ::testing::PrintToString(e2));
 }
 
 }  // namespace
