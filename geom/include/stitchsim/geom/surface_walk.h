@@ -29,11 +29,12 @@ Eigen::Vector3d Tangential(const Eigen::Vector3d& w, const Eigen::Vector3d& n);
 
 /// Walks the surface geodesic from the point at `uv` along the tangent direction `direction`
 /// (laid into the tangent plane there) for the arc length `length_mm` (>= 0), in chords of
-/// at most `max_substep_mm`: the first from the geodesic's Taylor series to third order, each
-/// next one the last reflected in the tangent plane between them (a discrete geodesic), each
-/// end projected back. Exact on a plane, on a cylinder (helices) and on a sphere (great
-/// circles); second order in the substep elsewhere. The result's `tangent` is the geodesic's
-/// direction at the end. Not converged if a substep leaves the surface.
+/// at most `max_substep_mm`: the first from the geodesic's Taylor series (walked in shorter
+/// chords over 3.5 mm), each next one the last reflected in the tangent plane between them (a
+/// discrete geodesic) and sized by the turn between chords, each end projected back. Exact on a
+/// plane, on a cylinder (helices) and on a sphere (great circles); second order in the substep
+/// elsewhere. The result's `tangent` is the geodesic's direction at the end. Not converged if a
+/// substep leaves the surface.
 SurfaceFoot WalkOnSurface(const Surface& s, const Eigen::Vector2d& uv,
                           const Eigen::Vector3d& direction, double length_mm,
                           double max_substep_mm = 0.5);
