@@ -43,7 +43,6 @@ class CentreLine {
 /// Tow states at one point: bit t-1 set when the band's tow t lays material there.
 struct Sample {
   PlyPoint point;
-  std::vector<Eigen::Vector2d> boundary_uv;
   std::uint64_t laid = 0;
   bool ok = false;
 };
@@ -63,7 +62,7 @@ class CourseBuilder {
     x.ok = true;
     x.point.boundary = cross.boundary;
     x.point.boundary_uv = cross.boundary_uv;
-    x.boundary_uv = cross.boundary_uv;
+    x.point.across = cross.across;
     const double p = ctx_.ply.coverage;
     for (int t = 1; t <= ctx_.band.count; ++t) {
       const double out = geom::FractionOutside(ctx_.ply.boundary_uv,
@@ -214,14 +213,15 @@ SurfaceCurve Reversed(SurfaceCurve c) {
   return c;
 }
 
-CourseSeam MeasureSeam(const PlyCourse& right, const PlyCourse& left) {
+CourseSeam MeasureSeam(const geom::Surface& surface, const PlyCourse& right,
+                       const PlyCourse& left) {
   CourseSeam seam;
   seam.right = right.number;
   seam.left = left.number;
   if (left.points.size() < 2) return seam;
   const std::size_t k = right.points.front().boundary.size() - 1;
   for (const PlyPoint& p : right.points) {
-    const Eigen::Vector3d e = -p.tool.linear().col(0);  // towards the left course
+    const Eigen::Vector3d e = -p.across.front();  // towards the left course
     const Eigen::Vector3d a = p.boundary.front();
     double best = INFINITY;
     Eigen::Vector3d q_best = a;
@@ -232,8 +232,14 @@ CourseSeam MeasureSeam(const PlyCourse& right, const PlyCourse& left) {
       const Eigen::Vector3d q = q0 + f * d;
       if ((q - a).norm() < best) best = (q - a).norm(), q_best = q;
     }
-    const double across = (q_best - a).dot(e);
-    if (((q_best - a) - across * e).norm() > 1.0) continue;  // not beside this point
+    // Not beside this point: more than 1 mm along the edge (an overlap on a tight radius sinks
+    // the facing edge below the tangent plane, which is no reason to skip it).
+    const Eigen::Vector3d along = surface.Normal(p.boundary_uv.front()).cross(e);
+    if (std::abs((q_best - a).dot(along)) > 1.0) continue;
+    // Along the surface: the chord reads 2 R sin(g / 2R) for a gap g across a curvature 1 / R.
+    const std::optional<double> walked =
+        geom::DistanceAlongGeodesic(surface, p.boundary_uv.front(), e, q_best);
+    const double across = walked.value_or((q_best - a).dot(e));
     if (across > 0) seam.max_gap_mm = std::max(seam.max_gap_mm, across);
     if (across < 0) seam.max_overlap_mm = std::max(seam.max_overlap_mm, -across);
   }

@@ -39,8 +39,9 @@ process::PlyCoveragePct PlanCoverage(const PlyPlan& plan, const geom::Surface& s
 /// `c` run backwards (points reversed, tangents negated).
 SurfaceCurve Reversed(SurfaceCurve c);
 
-/// Gap and overlap between the left edge of `right` and the right edge of `left`.
-CourseSeam MeasureSeam(const PlyCourse& right, const PlyCourse& left);
+/// Gap and overlap between the left edge of `right` and the right edge of `left`, along the
+/// surface.
+CourseSeam MeasureSeam(const geom::Surface& surface, const PlyCourse& right, const PlyCourse& left);
 
 inline constexpr double kPiRad = 3.14159265358979323846;
 

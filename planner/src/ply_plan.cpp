@@ -92,8 +92,10 @@ SurfaceCurve Extended(const geom::Surface& surface, const SurfaceCurve& c, doubl
   if (c.size() < 2) return c;
   auto grow = [&](const CurvePoint& end, const CurvePoint& inner, std::vector<CurvePoint>& out) {
     CurvePoint at = end;
-    Eigen::Vector3d dir = end.position - inner.position;
-    if (dir.norm() <= 0) return;
+    const Eigen::Vector3d chord = end.position - inner.position;
+    if (chord.norm() <= 0) return;
+    // The curve's own direction at its end (outwards); its last chord lags half a sample's turn.
+    Eigen::Vector3d dir = end.tangent.dot(chord) >= 0 ? end.tangent : -end.tangent;
     for (double done = 0; done < length - 1e-9;) {
       const double h = std::min(step, length - done);
       const geom::SurfaceFoot f = geom::WalkOnSurface(surface, at.uv, dir, h);
@@ -102,8 +104,8 @@ SurfaceCurve Extended(const geom::Surface& surface, const SurfaceCurve& c, doubl
       p.uv = f.uv;
       p.position = f.point;
       p.normal = surface.Normal(f.uv);
-      dir = f.point - at.position;
-      p.tangent = geom::Tangential(dir, p.normal);
+      p.tangent = geom::Tangential(f.tangent, p.normal);
+      dir = f.tangent;  // the geodesic's own direction (a chord would turn it every step)
       out.push_back(p);
       at = p;
       done += h;
@@ -184,6 +186,7 @@ SurfaceCurve KeepOffsetOnSurface(const geom::Surface& surface, const SurfaceCurv
 }
 
 void Summarise(PlyPlan& plan, const scene::Scene& scene) {
+  const geom::Surface& surface = *scene.surface;
   std::sort(plan.courses.begin(), plan.courses.end(),
             [](const PlyCourse& a, const PlyCourse& b) { return a.offset_index < b.offset_index; });
   for (std::size_t i = 0; i < plan.courses.size(); ++i) {
@@ -197,7 +200,7 @@ void Summarise(PlyPlan& plan, const scene::Scene& scene) {
     }
   }
   for (std::size_t i = 0; i + 1 < plan.courses.size(); ++i) {
-    CourseSeam seam = MeasureSeam(plan.courses[i], plan.courses[i + 1]);
+    CourseSeam seam = MeasureSeam(surface, plan.courses[i], plan.courses[i + 1]);
     plan.max_gap_mm = std::max(plan.max_gap_mm, seam.max_gap_mm);
     plan.max_overlap_mm = std::max(plan.max_overlap_mm, seam.max_overlap_mm);
     plan.seams.push_back(seam);

@@ -95,6 +95,7 @@ TowCross TowsAt(const geom::Surface& surface, const Eigen::Isometry3d& tool_part
   const int lo = band.first - 1, hi = band.Last();
   out.boundary_uv.resize(static_cast<std::size_t>(band.count) + 1);
   out.boundary.resize(static_cast<std::size_t>(band.count) + 1);
+  out.across.resize(static_cast<std::size_t>(band.count) + 1);
   const Eigen::Vector3d x = tool_part.linear().col(0);
   // Walk right from the centre, then left, stopping at every head boundary on the way (the
   // same walk whichever band is asked for) until the band's last one.
@@ -108,13 +109,14 @@ TowCross TowsAt(const geom::Surface& surface, const Eigen::Isometry3d& tool_part
       const double step = std::abs(target - walked);
       const geom::SurfaceFoot next = geom::WalkOnSurface(surface, at.uv, dir, step, max_substep_mm);
       if (!next.converged || !surface.Domain().Contains(next.uv, 1e-6)) return out;
-      // Keep walking outwards: the last chord laid into the tangent plane where it ends.
-      if (step > 0) dir = geom::Tangential(next.point - at.point, surface.Normal(next.uv));
+      // Keep walking outwards along the same geodesic.
+      dir = next.tangent;
       at = next;
       walked = target;
       if (b < lo || b > hi) continue;
       out.boundary_uv[static_cast<std::size_t>(b - lo)] = at.uv;
       out.boundary[static_cast<std::size_t>(b - lo)] = at.point;
+      out.across[static_cast<std::size_t>(b - lo)] = sign * at.tangent;
     }
   }
   out.ok = true;

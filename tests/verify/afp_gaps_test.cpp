@@ -12,15 +12,16 @@ namespace {
 
 using namespace testing;
 
-// Course 1 along +x at y = 0 (lines 10..13), course 2 at y = `spacing` (lines 20..23), running
-// along +x or back along -x, 4 lines of 100 mm each.
+// Course 1 along +u at v = `v0` (lines 10..13), course 2 at v = v0 + `spacing` (lines
+// 20..23), running along +u or back along -u, 4 lines of 100 mm each.
 std::vector<trace::LineRecord> TwoCourses(const geom::Surface& plane, double spacing,
-                                          bool second_backwards, std::uint64_t tows = 0xFFFF) {
+                                          bool second_backwards, std::uint64_t tows = 0xFFFF,
+                                          double v0 = 0.0) {
   std::vector<trace::LineRecord> lines;
   const Eigen::Vector2d x(1, 0);
   for (int i = 0; i < 4; ++i) {
-    lines.push_back(LayLine(10 + i, ToolAt(plane, Eigen::Vector2d(-200 + 100 * i, 0), x),
-                            ToolAt(plane, Eigen::Vector2d(-100 + 100 * i, 0), x), 0xFFFF, 1));
+    lines.push_back(LayLine(10 + i, ToolAt(plane, Eigen::Vector2d(-200 + 100 * i, v0), x),
+                            ToolAt(plane, Eigen::Vector2d(-100 + 100 * i, v0), x), 0xFFFF, 1));
   }
   trace::LineRecord between;  // retract and move over: course 0, lays nothing
   between.source_line = 15;
@@ -31,8 +32,8 @@ std::vector<trace::LineRecord> TwoCourses(const geom::Surface& plane, double spa
   const double dir = second_backwards ? -1.0 : 1.0;
   for (int i = 0; i < 4; ++i) {
     const double u0 = dir * (-200 + 100 * i), u1 = dir * (-100 + 100 * i);
-    lines.push_back(LayLine(20 + i, ToolAt(plane, Eigen::Vector2d(u0, spacing), dir * x),
-                            ToolAt(plane, Eigen::Vector2d(u1, spacing), dir * x), tows, 2));
+    lines.push_back(LayLine(20 + i, ToolAt(plane, Eigen::Vector2d(u0, v0 + spacing), dir * x),
+                            ToolAt(plane, Eigen::Vector2d(u1, v0 + spacing), dir * x), tows, 2));
   }
   return lines;
 }
@@ -70,6 +71,33 @@ TEST(AfpGaps, NeighbouringCoursesGapAndOverlapByTheirSpacing) {
       ASSERT_NE(other, nullptr);
       EXPECT_EQ(other->errors, 0);
       EXPECT_NEAR(other->worst_value.value_or(0.0), 0.0, 1e-9);
+    }
+  }
+}
+
+// Issue 26 item 5: on a cylinder, courses along the axis whose centre lines lie 16 w + g apart
+// round the circumference (v is arc length) leave a gap g along the surface (unrolled, two
+// strips of a plane). The chord projected on the course centre's tangent read
+// 2 R sin(g / 2R) cos((W + g) / 2R): 0.942 for 1.0 at R 150, 0.98 at R 250, 0.50 at R 49 (the
+// wing's nose), where a gap over the 0.76 mm limit passed.
+TEST(AfpGaps, GapsAndOverlapsOnACylinderReadAlongTheSurface) {
+  for (const double radius : {49.0, 150.0, 250.0}) {
+    const auto scene = AfpScene(geom::MakeCylinder(radius, true, 4000, 2 * kPi * radius * 0.999));
+    for (const double g : {1.0, 0.5, -1.2}) {
+      SCOPED_TRACE(::testing::Message() << "R " << radius << " offset " << g);
+      const double spacing = 16 * kTowWidth + g;
+      const Report report =
+          RunLines(*scene, TwoCourses(*scene->surface, spacing, false, 0xFFFF, -0.5 * spacing));
+      const RuleSummary* rule = RuleOf(report, g > 0 ? "afp.gap" : "afp.overlap");
+      ASSERT_NE(rule, nullptr);
+      ASSERT_TRUE(rule->worst_value);
+      EXPECT_NEAR(*rule->worst_value, std::abs(g), 0.01 * std::abs(g));
+      EXPECT_EQ(rule->errors, std::abs(g) > 0.76 ? 4 : 0);
+      if (std::abs(g) > 0.76) {
+        ASSERT_FALSE(rule->findings.empty());
+        EXPECT_EQ(rule->findings.front().line, 20);
+        EXPECT_NEAR(rule->findings.front().value, std::abs(g), 0.01 * std::abs(g));
+      }
     }
   }
 }

@@ -1,11 +1,11 @@
 // afp.gap and afp.overlap: the distance between the facing edges of neighbouring courses of a
 // ply. While a course lays, the outermost laid boundary on each side (tool -x and +x) at every
 // pose is compared with the edges of the ply's earlier courses nearby (a spatial hash of their
-// edge segments): the signed distance along the surface across the course (its outward
-// direction in the tangent plane) to the crossing of a facing edge, positive = gap, negative
-// = overlap. A course's own edges join the hash when it ends. afp.gap also counts a run of
-// tows cut inside a course while the tows on both sides lay (a gap of the run's width) and
-// tow bits beyond the head's tows (they lay nothing).
+// edge segments): the signed distance along the surface geodesic that leaves the edge point
+// across the course (the tow walk's direction there) to where a facing edge crosses it,
+// positive = gap, negative = overlap. A course's own edges join the hash when it ends. afp.gap also
+// counts a run of tows cut inside a course while the tows on both sides lay (a gap of the run's
+// width) and tow bits beyond the head's tows (they lay nothing).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -69,21 +69,37 @@ class EdgeHash {
   std::unordered_map<std::int64_t, std::vector<std::size_t>> cells_;
 };
 
-// The signed distance from edge point `p` (outward `o`, along `t`) to the nearest facing edge
-// segment crossing the line p + s o, if one lies within `reach_mm`.
-std::optional<double> FacingDistance(const EdgeHash& hash, const Eigen::Vector3d& p,
-                                     const Eigen::Vector3d& o, const Eigen::Vector3d& t,
-                                     double reach_mm) {
+// An edge point of the laying course: on the surface at `uv`, `outward` the unit tangent
+// across the course away from it.
+struct EdgePoint {
+  Eigen::Vector2d uv;
+  Eigen::Vector3d point, outward;
+};
+
+// The signed distance along the surface from edge point `e` outwards to the nearest facing edge
+// segment crossing the surface's normal plane along e.outward, if one lies within `reach_mm`.
+std::optional<double> FacingDistance(const geom::Surface& surface, const EdgeHash& hash,
+                                     const EdgePoint& e, double reach_mm) {
+  const Eigen::Vector3d& p = e.point;
+  const Eigen::Vector3d& o = e.outward;
+  const Eigen::Vector3d t = surface.Normal(e.uv).cross(o);  // along the edge
   std::optional<double> best;
+  Eigen::Vector3d crossing = p;
   hash.Near(p, [&](const EdgeSegment& s) {
     if (s.outward.dot(o) > -0.5) return;  // not facing this edge
     const double at = (s.a - p).dot(t), bt = (s.b - p).dot(t);
-    if (at * bt > 0.0 || at == bt) return;  // does not cross the line across the course
-    const double ao = (s.a - p).dot(o), bo = (s.b - p).dot(o);
-    const double d = ao + (bo - ao) * (at / (at - bt));
-    if (std::abs(d) <= reach_mm && (!best || std::abs(d) < std::abs(*best))) best = d;
+    if (at * bt > 0.0 || at == bt) return;  // does not cross the plane across the course
+    const Eigen::Vector3d q = s.a + (s.b - s.a) * (at / (at - bt));
+    const double d = (q - p).dot(o);  // the chord's share: to pick the nearest
+    if (std::abs(d) <= reach_mm && (!best || std::abs(d) < std::abs(*best))) {
+      best = d;
+      crossing = q;
+    }
   });
-  return best;
+  if (!best) return best;
+  // The chord reads short on a curved surface (2 R sin(g / 2R) for a gap g across a curvature
+  // 1 / R): walk the geodesic out to the crossing instead.
+  return geom::DistanceAlongGeodesic(surface, e.uv, o, crossing);
 }
 
 class CourseEdgeRule final : public Rule {
@@ -134,11 +150,10 @@ class CourseEdgeRule final : public Rule {
         for (Side& s : sides_) s.have = false;
         continue;
       }
-      const Eigen::Vector3d n = laid_->Surface().Normal(pose.cross.centre_uv);
-      const Eigen::Vector3d x = geom::Tangential(pose.tool.linear().col(0), n);
-      const Eigen::Vector3d t = geom::Tangential(pose.tool.linear().col(1), n);
-      Edge(0, pose.cross.boundary[static_cast<std::size_t>(lo) - 1], -x, t, *line, lo);
-      Edge(1, pose.cross.boundary[static_cast<std::size_t>(hi)], x, t, *line, hi);
+      const auto left = static_cast<std::size_t>(lo) - 1, right = static_cast<std::size_t>(hi);
+      const process::TowCross& c = pose.cross;
+      Edge(0, {c.boundary_uv[left], c.boundary[left], -c.across[left]}, *line, lo);
+      Edge(1, {c.boundary_uv[right], c.boundary[right], c.across[right]}, *line, hi);
     }
   }
 
@@ -156,14 +171,16 @@ class CourseEdgeRule final : public Rule {
   }
 
   // One edge point of the laying course: measured against the earlier courses, then kept.
-  void Edge(int side, const Eigen::Vector3d& p, const Eigen::Vector3d& outward,
-            const Eigen::Vector3d& along, const LaidLine& line, int tow) {
+  void Edge(int side, const EdgePoint& e, const LaidLine& line, int tow) {
     Side& s = sides_[side];
+    const Eigen::Vector3d& p = e.point;
     // Consecutive points of one edge join (a tow cut or added makes the edge jump across).
-    if (s.have && (p - s.last).norm() < 0.75 * width_mm_) pending_.push_back({s.last, p, outward});
+    if (s.have && (p - s.last).norm() < 0.75 * width_mm_) {
+      pending_.push_back({s.last, p, e.outward});
+    }
     s.have = true;
     s.last = p;
-    const std::optional<double> d = FacingDistance(hash_, p, outward, along, reach_mm_);
+    const std::optional<double> d = FacingDistance(laid_->Surface(), hash_, e, reach_mm_);
     if (!d) return;
     const double value = std::max(0.0, gap_ ? *d : -*d);
     if (value >= kDrawnFromMm) drawn_.Add(p);

@@ -1,11 +1,11 @@
 #pragma once
 // Local moves on a surface: the closest point near a known parameter (Gauss-Newton, no global
-// search) and a walk along the surface from a point in a tangent direction for a given arc
-// length (the direction carried from step to step as the chord laid into the next tangent
-// plane). Used by the offset-curve constructions and by everything that places AFP tows
+// search) and a walk along the surface geodesic from a point in a tangent direction for a
+// given arc length. Used by the offset-curve constructions and by everything that places AFP tows
 // beside a course centre line (planner and verifier alike). Part frame, mm.
 
 #include <Eigen/Core>
+#include <optional>
 
 #include "stitchsim/geom/surface.h"
 
@@ -16,6 +16,9 @@ struct SurfaceFoot {
   Eigen::Vector2d uv = Eigen::Vector2d::Zero();
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   bool converged = false;
+  /// WalkOnSurface only: the walk's unit tangent where it ends (its start direction carried
+  /// along the geodesic); zero from ProjectNear.
+  Eigen::Vector3d tangent = Eigen::Vector3d::Zero();
 };
 
 /// Closest surface point to `p` by Gauss-Newton from `uv`. Not converged: no point near.
@@ -24,13 +27,24 @@ SurfaceFoot ProjectNear(const Surface& s, const Eigen::Vector3d& p, Eigen::Vecto
 /// `w` without its component along the unit `n`, made unit.
 Eigen::Vector3d Tangential(const Eigen::Vector3d& w, const Eigen::Vector3d& n);
 
-/// Walks the surface from the point at `uv` along the tangent direction `direction` (laid into
-/// the tangent plane there) for the arc length `length_mm` (>= 0), in substeps of at most
-/// `max_substep_mm`, each projected back and its arc taken from the chord and the turn of the
-/// tangent (exact on a circle). On a plane or along a cylinder's circumference the end point
-/// is exact. Not converged if a substep leaves the surface.
+/// Walks the surface geodesic from the point at `uv` along the tangent direction `direction`
+/// (laid into the tangent plane there) for the arc length `length_mm` (>= 0), in chords of
+/// at most `max_substep_mm`: the first from the geodesic's Taylor series (walked in shorter
+/// chords over 3.5 mm), each next one the last reflected in the tangent plane between them (a
+/// discrete geodesic) and sized by the turn between chords, each end projected back. Exact on a
+/// plane, on a cylinder (helices) and on a sphere (great circles); second order in the substep
+/// elsewhere. The result's `tangent` is the geodesic's direction at the end. Not converged if a
+/// substep leaves the surface.
 SurfaceFoot WalkOnSurface(const Surface& s, const Eigen::Vector2d& uv,
                           const Eigen::Vector3d& direction, double length_mm,
                           double max_substep_mm = 0.5);
+
+/// Signed distance along the surface geodesic from the point at `uv` in the tangent direction
+/// `direction` to where `to` lies across it (its offset to the side and off the surface set
+/// aside): the geodesic walked until `to` is abeam, negative behind. Nullopt if the walk
+/// leaves the surface. For the gap between two courses' facing edges (planner and afp rules).
+std::optional<double> DistanceAlongGeodesic(const Surface& s, const Eigen::Vector2d& uv,
+                                            const Eigen::Vector3d& direction,
+                                            const Eigen::Vector3d& to, double max_substep_mm = 0.5);
 
 }  // namespace stitchsim::geom

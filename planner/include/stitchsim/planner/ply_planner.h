@@ -45,6 +45,7 @@ struct PlyPoint {
   /// band.first + j.
   std::vector<Eigen::Vector3d> boundary;
   std::vector<Eigen::Vector2d> boundary_uv;  ///< the same in (u, v)
+  std::vector<Eigen::Vector3d> across;       ///< unit tangents there, left to right (TowCross)
   bool event = false;                        ///< inserted at a cut / add position
 };
 

@@ -64,15 +64,19 @@ struct TowCross {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector2d> boundary_uv;  ///< k + 1
   std::vector<Eigen::Vector3d> boundary;     ///< k + 1, on the surface
+  /// k + 1 unit tangents at the boundaries: the direction of tool x at the foot carried along
+  /// the walk (across the course, left to right; the normal to a boundary's line on the
+  /// surface where the walk crosses it at a right angle).
+  std::vector<Eigen::Vector3d> across;
 };
 
 /// The tow boundaries at `tool_part` (tool pose, part frame, mm). `uv_hint`: a parameter near
 /// the tool point's foot (the previous pose's), or nullptr for a global projection (a foot
 /// whose normal faces away from the head, on the far side of a thin or closed part, is looked
 /// for again among grid points that face it).
-/// `max_substep_mm` bounds the walk's steps (geom::WalkOnSurface); 0: half a tow width (the
-/// walk's arc is exact on a circle: on the seed's wing a 1 mm step moves no boundary by more
-/// than 3e-5 mm, and planner and verifier both use the default).
+/// `max_substep_mm` bounds the walk's chords (geom::WalkOnSurface); 0: half a tow width (the
+/// walk is exact on a cylinder and a sphere, second order in the chord elsewhere; planner and
+/// verifier both use the default).
 TowCross TowsAt(const geom::Surface& surface, const Eigen::Isometry3d& tool_part,
                 const TowLayout& layout, const Eigen::Vector2d* uv_hint,
                 double max_substep_mm = 0.0);
