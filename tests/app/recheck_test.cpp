@@ -116,36 +116,69 @@ std::optional<nlohmann::json> FindingOn(const nlohmann::json& rule, int line) {
   return std::nullopt;
 }
 
-// stitch.length's worst deviation on the coupled circle is 0.006423 % (line 119, stitch 112):
-// an error limit of 0.005 % makes it an error there; a clearance margin of 15 mm warns where
-// the smallest clearance, 12.2 mm, is (line 80).
+// Tightened limits on the coupled circle: an error limit on stitch.length under its worst
+// deviation, a clearance margin over its smallest clearance. The second route is a fresh
+// `verify` of the same programme on a copy of the scene that carries the same limits in its
+// own `limits:` block: recheck (replaying the saved trace) must give the same rules, finding
+// for finding. Where the findings must be is read from the untightened report's worst
+// values, not copied from a run.
 TEST(Recheck, TightenedLimitsGiveTheTighterVerdictOnTheExpectedLines) {
   const Saved s = PlanAndSave("circle_8in", "coupled");
   const nlohmann::json before = nlohmann::json::parse(ReadText(s.json));
-  ASSERT_EQ(RuleOf(before, "stitch.length").at("errors"), 0);
-  ASSERT_EQ(RuleOf(before, "collision.clearance").at("warnings"), 0);
-  const fs::path limits = LimitsFile(
-      "tight.yaml",
-      "limits:\n  stitch.length: {error_pct: 0.005}\n  collision.clearance: {warning_mm: 15}\n");
+  const nlohmann::json length_before = RuleOf(before, "stitch.length");
+  const nlohmann::json clearance_before = RuleOf(before, "collision.clearance");
+  ASSERT_EQ(length_before.at("errors"), 0);
+  ASSERT_EQ(clearance_before.at("warnings"), 0);
+  const double worst_length = length_before.at("worst").at("value").get<double>();
+  const double nearest = clearance_before.at("worst").at("value").get<double>();
+  ASSERT_GT(worst_length, 0.0);
+  // The limits as the YAML carries them (to_string's six decimals).
+  const double length_limit = std::stod(std::to_string(0.8 * worst_length));
+  const double margin = std::stod(std::to_string(nearest + 2.0));
+  const std::string block =
+      "limits:\n  stitch.length: {error_pct: " + std::to_string(length_limit) +
+      "}\n  collision.clearance: {warning_mm: " + std::to_string(margin) + "}\n";
+  const fs::path limits = LimitsFile("tight.yaml", block);
   const fs::path json = s.trace.parent_path() / "tight.json";
   const CliResult r = Stitchsim("recheck " + s.trace.string() + " --scene " + s.scene +
                                 " --limits " + limits.string() + " --report " + json.string());
   EXPECT_EQ(r.exit_code, 1) << r.err;
   const nlohmann::json after = nlohmann::json::parse(ReadText(json));
+
+  const fs::path dir = testing::ScratchDir() / "tight_scene";
+  fs::create_directories(dir);
+  const fs::path scene = dir / "circle_8in.yaml";
+  std::ofstream(scene) << ReadText(s.scene) << block;
+  const fs::path fresh_json = dir / "fresh.json";
+  const CliResult fresh =
+      Stitchsim("verify " + (s.trace.parent_path() / "p.nc").string() + " --scene " +
+                scene.string() + " --report " + fresh_json.string());
+  EXPECT_EQ(fresh.exit_code, 1) << fresh.err;
+  const nlohmann::json again = nlohmann::json::parse(ReadText(fresh_json));
+
+  for (const char* id : {"stitch.length", "collision.clearance", "needle.side_force"}) {
+    EXPECT_EQ(RuleOf(after, id), RuleOf(again, id)) << id;
+  }
+  EXPECT_EQ(RuleOf(after, "needle.side_force"), RuleOf(before, "needle.side_force"));
   const nlohmann::json length = RuleOf(after, "stitch.length");
   EXPECT_GT(length.at("errors").get<long>(), 0);
-  const auto at_worst = FindingOn(length, 119);
-  ASSERT_TRUE(at_worst.has_value());
-  EXPECT_EQ(at_worst->at("stitch"), 112);
+  const int worst_line = length_before.at("worst").at("line").get<int>();
+  const auto at_worst = FindingOn(length, worst_line);
+  ASSERT_TRUE(at_worst.has_value()) << "no finding on the worst line " << worst_line;
+  EXPECT_EQ(at_worst->at("stitch"), length_before.at("worst").at("stitch"));
   EXPECT_EQ(at_worst->at("severity"), "error");
-  EXPECT_EQ(at_worst->at("limit"), 0.005);
+  EXPECT_NEAR(at_worst->at("value").get<double>(), worst_length, 1e-9);
+  for (const auto& f : length.at("findings")) {
+    EXPECT_GT(f.at("value").get<double>(), length_limit) << f.dump();
+  }
   const nlohmann::json clearance = RuleOf(after, "collision.clearance");
   EXPECT_GT(clearance.at("warnings").get<long>(), 0);
-  const auto nearest = FindingOn(clearance, 80);
-  ASSERT_TRUE(nearest.has_value());
-  EXPECT_NEAR(nearest->at("value").get<double>(), 12.2, 0.05);
-  // Everything else as verify found it.
-  EXPECT_EQ(RuleOf(after, "needle.side_force"), RuleOf(before, "needle.side_force"));
+  const auto closest = FindingOn(clearance, clearance_before.at("worst").at("line").get<int>());
+  ASSERT_TRUE(closest.has_value());
+  EXPECT_NEAR(closest->at("value").get<double>(), nearest, 1e-9);
+  for (const auto& f : clearance.at("findings")) {
+    EXPECT_LT(f.at("value").get<double>(), margin) << f.dump();
+  }
 }
 
 TEST(Recheck, ATightenedLimitFailsAProgrammeVerifyPassed) {

@@ -178,6 +178,10 @@ TEST(SurfacePath, LengthOnACylinderIsTheDevelopedLength) {
   EXPECT_LT((mid.uv - Eigen::Vector2d(0, 0)).norm(), 1e-8);
 }
 
+// The inverse undoes the arc length; the arc length itself against a second route, the
+// elliptic integral of the second kind (<cmath>): the half ellipse (20 + 5 cos t, 10 sin t),
+// t in [-pi/2, pi/2], has speed 10 sqrt(1 - k^2 sin^2 t) with k^2 = 1 - (5/10)^2, so its arc
+// length from t = -pi/2 is 10 (E(k) + E(k, t)).
 TEST(SurfacePath, EllipseArcLengthInverseIsConsistent) {
   auto plane = MakePlane(100, 100);
   Curve2 c;
@@ -187,6 +191,15 @@ TEST(SurfacePath, EllipseArcLengthInverseIsConsistent) {
   for (double s = 0; s <= path.Length(); s += 0.77) {
     const PathPoint p = path.AtArcLength(s);
     EXPECT_NEAR(path.ArcLengthAt(p.segment, p.t), s, 1e-9);
+  }
+  const double k = std::sqrt(0.75);
+  EXPECT_NEAR(path.Length(), 40.0 + 20.0 * std::comp_ellint_2(k), 1e-7);
+  for (double t = -kPi / 2; t <= kPi / 2; t += 0.13) {
+    const double s = 40.0 + 10.0 * (std::comp_ellint_2(k) + std::ellint_2(k, t));
+    const PathPoint p = path.AtArcLength(s);
+    EXPECT_LT((p.position - Eigen::Vector3d(20 + 5 * std::cos(t), 10 * std::sin(t), 0)).norm(),
+              1e-7)
+        << "t " << t;
   }
 }
 
