@@ -1,6 +1,8 @@
 // The OCCT-backed Surface: a Geom_Surface over a parameter box, its parameters scaled to mm.
-// Closest points: Newton from this thread's last foot point on the same surface, then from
-// the nearest point of a coarse grid, and the kernel's global search only when both fail.
+// Closest points are global: Newton from a start (the caller's, this thread's last foot point
+// on the same surface, or the nearest cell centre of the projection index), then Newton from
+// every cell of the index whose box lies nearer than the answer so far (on a closed wing, the
+// other skin); the kernel's global search only when no descent converges.
 #include "occt_surface.h"
 
 #include <GeomAPI_ProjectPointOnSurf.hxx>
@@ -15,6 +17,7 @@
 #include <limits>
 #include <utility>
 
+#include "projection_index.h"
 #include "stitchsim/geom/cad_surface.h"
 
 namespace stitchsim::geom {
@@ -23,7 +26,13 @@ namespace {
 
 Eigen::Vector3d ToEigen(const gp_XYZ& p) { return {p.X(), p.Y(), p.Z()}; }
 
-constexpr int kGrid = 16;  // coarse grid cells per direction for the global start
+// The projection index's cells: sized for this chord tolerance (mm), at least kIndexMinCells
+// and at most kIndexMaxCells a side, at most kIndexMaxTotal in all (about 4 surface
+// evaluations a cell when the surface is made).
+constexpr double kIndexChordMm = 0.5;
+constexpr int kIndexMinCells = 16;
+constexpr int kIndexMaxCells = 512;
+constexpr int kIndexMaxTotal = 8192;
 
 class OcctSurface final : public Surface {
  public:
@@ -40,17 +49,16 @@ class OcctSurface final : public Surface {
     scale_ = Eigen::Vector2d((box_.u1 - box_.u0) / lu, (box_.v1 - box_.v0) / lv);
     dom_.min = Eigen::Vector2d::Zero();
     dom_.max = Eigen::Vector2d(lu, lv);
-    for (int i = 0; i <= kGrid; ++i) {
-      for (int k = 0; k <= kGrid; ++k) {
-        const Eigen::Vector2d uv = dom_.max.cwiseProduct(Eigen::Vector2d(i, k) / kGrid);
-        grid_.push_back({uv, Point(uv)});
-      }
+    Eigen::Vector2i cells =
+        TessellationCells(kIndexChordMm).cwiseMax(kIndexMinCells).cwiseMin(kIndexMaxCells);
+    while (cells.prod() > kIndexMaxTotal) {
+      const int longer = cells.x() >= cells.y() ? 0 : 1;
+      cells[longer] = std::max(kIndexMinCells, cells[longer] / 2);
+      if (cells.x() == kIndexMinCells && cells.y() == kIndexMinCells) break;
     }
-    for (const auto& g : grid_) {
-      if (!g.second.allFinite()) {
-        error = "the surface does not evaluate over its domain";
-        return false;
-      }
+    if (!index_.Build(*this, cells)) {
+      error = "the surface does not evaluate over its domain";
+      return false;
     }
     return true;
   }
@@ -108,31 +116,15 @@ class OcctSurface final : public Surface {
   SurfaceProjection Project(const Eigen::Vector3d& p) const override {
     thread_local const OcctSurface* hint_owner = nullptr;
     thread_local Eigen::Vector2d hint_uv;
-    double grid_d2 = 0.0;
-    const Eigen::Vector2d grid_uv = NearestGridPoint(p, &grid_d2);
-    Newton r;
-    if (hint_owner == this) r = Descend(p, hint_uv);
-    // The previous call's answer makes a good start for a neighbouring point, but from a far
-    // one the descent can end in another local minimum (the other skin of a wing that wraps
-    // round its section). Its answer stands only when no farther than the nearest grid sample;
-    // otherwise the descent from that sample decides, and the nearer answer is kept.
-    const bool hint_ok = r.converged && r.inside && (Point(r.uv) - p).squaredNorm() <= grid_d2;
-    if (!hint_ok) {
-      const Newton g = Descend(p, grid_uv);
-      const bool g_nearer =
-          !r.converged || (Point(g.uv) - p).squaredNorm() < (Point(r.uv) - p).squaredNorm();
-      if (g.converged && (!r.converged || (g.inside && (!r.inside || g_nearer)))) r = g;
-    }
-    if (!r.converged) r = GlobalSearch(p);
+    const Newton r = Closest(p, hint_owner == this ? &hint_uv : nullptr);
     hint_owner = this;
     hint_uv = r.uv;
-    SurfaceProjection out;
-    out.uv = r.uv;
-    out.inside_domain = r.inside;
-    out.point = Point(r.uv);
-    out.normal = Normal(r.uv);
-    out.signed_distance_mm = (p - out.point).dot(out.normal);
-    return out;
+    return Result(p, r);
+  }
+
+  SurfaceProjection ProjectFrom(const Eigen::Vector3d& p,
+                                const Eigen::Vector2d& uv_start) const override {
+    return Result(p, Closest(p, &uv_start));
   }
 
   Eigen::Vector2i TessellationCells(double chord_tol_mm) const override {
@@ -213,18 +205,44 @@ class OcctSurface final : public Surface {
     return len;
   }
 
-  Eigen::Vector2d NearestGridPoint(const Eigen::Vector3d& p, double* squared = nullptr) const {
-    double best = std::numeric_limits<double>::infinity();
-    Eigen::Vector2d uv = Eigen::Vector2d::Zero();
-    for (const auto& [g_uv, g_p] : grid_) {
-      const double d = (g_p - p).squaredNorm();
-      if (d < best) {
-        best = d;
-        uv = g_uv;
+  SurfaceProjection Result(const Eigen::Vector3d& p, const Newton& r) const {
+    SurfaceProjection out;
+    out.uv = r.uv;
+    out.inside_domain = r.inside;
+    out.point = Point(r.uv);
+    out.normal = Normal(r.uv);
+    out.signed_distance_mm = (p - out.point).dot(out.normal);
+    return out;
+  }
+
+  // The closest point over the whole domain. The start (or the nearest cell centre) gives a
+  // first answer at distance d; a nearer point can only lie in a cell whose box is nearer than
+  // d, so each such cell away from the answer's own neighbourhood is descended from too and
+  // the nearest answer kept. For a point on or near the surface that is no cell at all (the
+  // boxes about the foot are its neighbourhood), except where another sheet passes within d.
+  Newton Closest(const Eigen::Vector3d& p, const Eigen::Vector2d* start) const {
+    Newton best;
+    double best_d2 = std::numeric_limits<double>::infinity();
+    const auto consider = [&](const Newton& r) {
+      if (!r.converged) return;
+      const double d2 = (Point(r.uv) - p).squaredNorm();
+      if (d2 < best_d2) {
+        best = r;
+        best_d2 = d2;
       }
+    };
+    if (start != nullptr) consider(Descend(p, *start));
+    if (!best.converged) consider(Descend(p, index_.NearestCentre(p)));
+    if (!best.converged) return GlobalSearch(p);
+    thread_local std::vector<ProjectionIndex::Near> near;
+    index_.CellsWithin(p, std::sqrt(best_d2), near);
+    const Eigen::Vector2i home = index_.CellOf(best.uv);
+    for (const ProjectionIndex::Near& c : near) {
+      if (!(c.box_d2 < best_d2)) break;  // nearest first: no later cell can hold a nearer point
+      if ((c.cell - home).cwiseAbs().maxCoeff() <= 1) continue;
+      consider(Descend(p, index_.CentreOf(c.cell)));
     }
-    if (squared != nullptr) *squared = best;
-    return uv;
+    return best;
   }
 
   // Newton on |S(uv) - p|^2 with iterates kept in the domain. `inside`: the minimum is not
@@ -261,7 +279,7 @@ class OcctSurface final : public Surface {
 
   Newton GlobalSearch(const Eigen::Vector3d& p) const {
     Newton out;
-    out.uv = NearestGridPoint(p);
+    out.uv = index_.NearestCentre(p);
     out.converged = true;
     try {
       GeomAPI_ProjectPointOnSurf proj(gp_Pnt(p.x(), p.y(), p.z()), s_, box_.u0, box_.u1, box_.v0,
@@ -285,7 +303,7 @@ class OcctSurface final : public Surface {
   std::string kind_;
   Domain2 dom_;
   Eigen::Vector2d scale_ = Eigen::Vector2d::Ones();  // kernel parameter per mm
-  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector3d>> grid_;
+  ProjectionIndex index_;
 };
 
 }  // namespace

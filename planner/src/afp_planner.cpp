@@ -9,6 +9,7 @@
 #include "stitchsim/common/limits.h"
 #include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
+#include "stitchsim/process/afp_tows.h"
 #include "stitchsim/program/block.h"
 #include "stitchsim/program/writer.h"
 
@@ -163,6 +164,91 @@ void AxisRanges(AfpPlan& plan) {
 
 }  // namespace
 
+namespace {
+
+// The pose at a point of the course: head axis q (normal or inclined), tool y along the course.
+struct CourseFrames {
+  const scene::Scene& scene;
+  const geom::Curve2& curve;
+  const geom::SurfacePath& lifted;
+  double incline_rad;
+
+  std::optional<AfpPoint> PointAt(const geom::PathPoint& at) const {
+    AfpPoint p;
+    p.uv = at.uv;
+    p.position = at.position;
+    p.normal = at.normal.normalized();
+    const Eigen::Vector2d duv = curve.Segment(at.segment).Derivative(at.t);
+    const Eigen::Vector3d dir = scene.surface->Jacobian(at.uv) * duv;
+    const auto q = InclinationVector(p.normal, dir, incline_rad);
+    if (!q) return std::nullopt;
+    p.tangent = (dir - dir.dot(p.normal) * p.normal).normalized();
+    p.inclination = *q;
+    p.alpha_rad = std::atan2(p.normal.z(), p.normal.y());
+    p.axes = AfpHeadAxesFromDirection(p.inclination);
+    // q leans at most < 90 deg from n towards t, so t is never along q.
+    p.tool.linear() = *geom::FrameFromNormalAndDirection(p.inclination, p.tangent);
+    p.tool.translation() = p.position;
+    return p;
+  }
+
+  // True when every tow of the head lies on the surface at arc length s (process::TowsAt, the
+  // model the afp.* rules judge the programme with).
+  bool BandFits(double s_mm) const {
+    const std::optional<AfpPoint> p = PointAt(lifted.AtArcLength(s_mm));
+    return p &&
+           process::TowsAt(*scene.surface, p->tool, process::TowLayoutOf(scene.head), nullptr).ok;
+  }
+};
+
+// The stretch of the path [begin, end] (arc length, mm) over which the head's whole band of tows
+// lies on the surface: a course clipped to the domain by its centre line hangs half its band
+// off the surface at its ends, which the afp.* rules report. Ends found to kBandEndToleranceMm.
+struct BandRange {
+  double begin_mm = 0.0;
+  double end_mm = 0.0;
+};
+constexpr double kBandEndToleranceMm = 0.01;
+
+std::optional<BandRange> BandOnSurface(const CourseFrames& f, double spacing_mm,
+                                       const std::string& name, const SourceLocation& where,
+                                       DiagnosticSink& sink) {
+  const double length = f.lifted.Length();
+  const int n = std::max(1, static_cast<int>(std::ceil(length / spacing_mm - 1e-9)));
+  std::vector<bool> fits(static_cast<std::size_t>(n) + 1);
+  for (int i = 0; i <= n; ++i) fits[static_cast<std::size_t>(i)] = f.BandFits(length * i / n);
+  const auto first = std::find(fits.begin(), fits.end(), true);
+  if (first == fits.end()) {
+    sink.Error(
+        "plan-afp-band-off-surface", where,
+        "AFP course '" + name + "': the head's band of tows leaves the surface all along it");
+    return std::nullopt;
+  }
+  const int lo = static_cast<int>(first - fits.begin());
+  const int hi = n - static_cast<int>(std::find(fits.rbegin(), fits.rend(), true) - fits.rbegin());
+  for (int i = lo; i <= hi; ++i) {
+    if (fits[static_cast<std::size_t>(i)]) continue;
+    sink.Error("plan-afp-band-off-surface", where,
+               "AFP course '" + name + "': the head's band of tows leaves the surface at s " +
+                   Fixed(length * i / n, 3) + " mm, between stretches where it fits");
+    return std::nullopt;
+  }
+  // Bisect each trimmed end between a point off and a point on.
+  auto edge = [&](double off, double on) {
+    while (std::abs(on - off) > kBandEndToleranceMm) {
+      const double mid = 0.5 * (off + on);
+      (f.BandFits(mid) ? on : off) = mid;
+    }
+    return on;
+  };
+  BandRange r;
+  r.begin_mm = lo == 0 ? 0.0 : edge(length * (lo - 1) / n, length * lo / n);
+  r.end_mm = hi == n ? length : edge(length * (hi + 1) / n, length * hi / n);
+  return r;
+}
+
+}  // namespace
+
 std::optional<AfpPlan> PlanAfpCourse(const scene::Scene& scene, const scene::PathSpec* path,
                                      const AfpPlanOptions& options, DiagnosticSink& sink) {
   const SourceLocation where = path != nullptr ? path->where : SourceLocation{scene.file.string()};
@@ -202,59 +288,53 @@ std::optional<AfpPlan> PlanAfpCourse(const scene::Scene& scene, const scene::Pat
     sink.Error("plan-no-course", where, "an AFP course needs a lay angle or a scene path");
     return std::nullopt;
   }
-  const geom::Surface& surface = *scene.surface;
-  const geom::SurfacePath lifted(surface, *curve);
-  plan.length_mm = lifted.Length();
-  if (!(plan.length_mm > options.point_spacing_mm * 1e-6)) {
+  const geom::SurfacePath lifted(*scene.surface, *curve);
+  const double path_length = lifted.Length();
+  if (!(path_length > options.point_spacing_mm * 1e-6)) {
     sink.Error("plan-path-too-short", where, "AFP course '" + plan.course_name + "' is empty");
     return std::nullopt;
   }
-  if (plan.length_mm / options.point_spacing_mm >
+  if (path_length / options.point_spacing_mm >
       static_cast<double>(limits::kMaxAfpPointsPerCourse)) {
     sink.Error("plan-too-many-points", where,
-               "AFP course '" + plan.course_name + "' (" + std::to_string(plan.length_mm) +
+               "AFP course '" + plan.course_name + "' (" + std::to_string(path_length) +
                    " mm) at " + std::to_string(options.point_spacing_mm) +
                    " mm spacing would take more than " +
                    std::to_string(limits::kMaxAfpPointsPerCourse) +
                    " points, the limit for one course (docs/limits.md)");
     return std::nullopt;
   }
+  const CourseFrames frames{scene, *curve, lifted, options.incline_rad};
+  const std::optional<BandRange> band =
+      BandOnSurface(frames, options.point_spacing_mm, plan.course_name, where, sink);
+  if (!band) return std::nullopt;
+  plan.length_mm = band->end_mm - band->begin_mm;
+  plan.trimmed_start_mm = band->begin_mm;
+  plan.trimmed_end_mm = path_length - band->end_mm;
   const int segments =
       std::max(1, static_cast<int>(std::ceil(plan.length_mm / options.point_spacing_mm - 1e-9)));
   plan.points.reserve(static_cast<std::size_t>(segments) + 1);
-  geom::PathPoint at = lifted.AtArcLength(0.0);
+  geom::PathPoint at = lifted.AtArcLength(band->begin_mm);
   for (int i = 0; i <= segments; ++i) {
     const double s = plan.length_mm * i / segments;
-    if (i > 0) at = lifted.AtArcLengthFrom(at, s);
-    AfpPoint p;
-    p.index = i;
-    p.s_mm = s;
-    p.uv = at.uv;
-    p.position = at.position;
-    p.normal = at.normal.normalized();
-    const Eigen::Vector2d duv = curve->Segment(at.segment).Derivative(at.t);
-    const Eigen::Vector3d dir = surface.Jacobian(at.uv) * duv;
-    const auto q = InclinationVector(p.normal, dir, options.incline_rad);
-    if (!q) {
+    if (i > 0) at = lifted.AtArcLengthFrom(at, band->begin_mm + s);
+    std::optional<AfpPoint> p = frames.PointAt(at);
+    if (!p) {
       sink.Error("plan-degenerate-frame", where,
                  "AFP course '" + plan.course_name + "' runs along the surface normal at s " +
-                     Fixed(s, 3) + " mm");
+                     Fixed(band->begin_mm + s, 3) + " mm");
       return std::nullopt;
     }
-    p.tangent = (dir - dir.dot(p.normal) * p.normal).normalized();
-    p.inclination = *q;
-    p.alpha_rad = std::atan2(p.normal.z(), p.normal.y());
-    p.axes = AfpHeadAxesFromDirection(p.inclination);
-    const auto r = geom::FrameFromNormalAndDirection(p.inclination, p.tangent);
-    // q leans at most < 90 deg from n towards t, so t is never along q.
-    p.tool.linear() = *r;
-    p.tool.translation() = p.position;
-    plan.points.push_back(p);
+    p->index = i;
+    p->s_mm = s;
+    plan.points.push_back(*p);
   }
   AxisRanges(plan);
   CheckTravel(plan);
   return plan;
 }
+
+int AfpCoursePly(const scene::Scene& scene) { return static_cast<int>(scene.plies.size()) + 1; }
 
 void WriteAfpProgram(const AfpPlan& plan, const scene::Scene& scene,
                      const program::Dialect& dialect, std::ostream& out) {
@@ -273,6 +353,18 @@ void WriteAfpProgram(const AfpPlan& plan, const scene::Scene& scene,
 
   program::Block b;
   detail::WriteOpening(w, b, dialect, header, scene.head.tool_number);
+  // The course is a ply of its own, numbered after the scene's plies (docs/program-format.md,
+  // "AFP programmes"): one course, every tow of the head added at the start, cut at the end.
+  const auto code = [&](int m, std::optional<int> param, std::string comment) {
+    b.Clear();
+    b.m_codes = {m};
+    b.param = param;
+    b.comment = std::move(comment);
+    w.Write(b);
+  };
+  code(dialect.m.ply_start, AfpCoursePly(scene),
+       "PLY name=" + plan.course_name + ", a course of plan afp, not a scene ply");
+  code(dialect.m.course_start, 1, "COURSE 1 of 1");
   detail::PoseWords pose_words(dialect);
   double modal_feed = 0.0;  // mm/min; none written yet
   for (const AfpPoint& p : plan.points) {
@@ -287,7 +379,10 @@ void WriteAfpProgram(const AfpPlan& plan, const scene::Scene& scene,
       modal_feed = feed;
     }
     w.Write(b);
+    if (p.index == 0) code(dialect.m.tow_add, 0, "every tow of the head");
   }
+  code(dialect.m.tow_cut, 0, {});
+  code(dialect.m.course_end, std::nullopt, {});
   detail::WriteEnding(w, b, dialect);
 }
 

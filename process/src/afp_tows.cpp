@@ -74,19 +74,18 @@ TowCross TowsAt(const geom::Surface& surface, const Eigen::Isometry3d& tool_part
   TowCross out;
   if (!(max_substep_mm > 0)) max_substep_mm = 0.5 * layout.width_mm;
   const Eigen::Vector3d p = tool_part.translation();
-  geom::SurfaceFoot foot;
-  if (uv_hint != nullptr) foot = geom::ProjectNear(surface, p, *uv_hint);
-  if (!foot.converged) {
-    const geom::SurfaceProjection proj = surface.Project(p);
-    if (!proj.inside_domain) return out;
-    foot = geom::ProjectNear(surface, p, proj.uv);
-    // The roller presses on the side of the surface its head axis comes from. On a thin or
-    // closed part (a wing's skin wraps round its section) a global projection can land on the
-    // far side; then start again from the nearest of a grid of points that face the head.
-    const Eigen::Vector3d z = tool_part.linear().col(2);
-    if (foot.converged && surface.Normal(foot.uv).dot(z) <= 0.0) foot = NearSideFoot(surface, p, z);
-    if (!foot.converged) return out;
-  }
+  // The global closest point (the hint only speeds the search: a descent from a hint on the
+  // other skin of a closed wing would stay there), refined by the same local step as before.
+  const geom::SurfaceProjection proj =
+      uv_hint != nullptr ? surface.ProjectFrom(p, *uv_hint) : surface.Project(p);
+  if (!proj.inside_domain) return out;
+  geom::SurfaceFoot foot = geom::ProjectNear(surface, p, proj.uv);
+  // The roller presses on the side of the surface its head axis comes from. On a thin or
+  // closed part (a wing's skin wraps round its section) the closest point can lie on the far
+  // side; then start again from the nearest of a grid of points that face the head.
+  const Eigen::Vector3d z = tool_part.linear().col(2);
+  if (foot.converged && surface.Normal(foot.uv).dot(z) <= 0.0) foot = NearSideFoot(surface, p, z);
+  if (!foot.converged) return out;
   if (!surface.Domain().Contains(foot.uv, 1e-6)) return out;
   out.centre_uv = foot.uv;
   out.centre = foot.point;

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "seed_wing.h"
 
@@ -109,6 +111,72 @@ TEST(WingSurface, ProjectionFindsTheLoftParameter) {
   EXPECT_TRUE(f.inside_domain);
   EXPECT_LT((f.uv - uv).norm(), 1e-6);
   EXPECT_NEAR(f.signed_distance_mm, 3.0, 1e-6);
+}
+
+// Issue 26 item 7: a projection started on one skin of the closed wing finds the other skin
+// when that is the nearer. Second route: the closed-form loft (naca.h) and its outward normal;
+// the point lies 2 mm out from the loft, so the loft's point is its closest on the wing (to the
+// fit's 0.005 mm). Near the trailing edge the skins are 5..30 mm apart: a descent from the
+// other skin's point at the same chord station stops there, 7..32 mm away.
+TEST(WingSurface, ProjectionFromAHintOnTheOtherSkinFindsTheNearerSkin) {
+  const WingSpec spec = SeedWing();
+  const WingSurface w = MakeOrFail(spec, WingSkin::kFull);
+  ASSERT_TRUE(w.surface);
+  std::string error;
+  const std::optional<Wing> wing = Wing::Make(spec, error);
+  ASSERT_TRUE(wing) << error;
+  constexpr double kOut = 2.0;
+  int cases = 0;
+  for (const double s : {0.05, 0.1, 0.9, 0.95}) {  // upper (< 0.5) and lower skin
+    for (const double eta : {0.1, 0.5, 0.9}) {
+      const Eigen::Vector3d foot = wing->Point(s, eta);
+      const Eigen::Vector3d p = foot + kOut * wing->Normal(s, eta);
+      // The other skin's point at the same chord station (s mirrored about the nose).
+      const Eigen::Vector2d hint = Uv(*w.surface, WingSkin::kFull, 1.0 - s, eta);
+      const double other = (w.surface->Point(hint) - p).norm();
+      ASSERT_GT(other, kOut + 3.0) << s << " " << eta;
+      for (const bool thread_hint : {false, true}) {
+        SurfaceProjection f;
+        if (thread_hint) {
+          w.surface->Project(w.surface->Point(hint));  // the thread's last foot: the other skin
+          f = w.surface->Project(p);
+        } else {
+          f = w.surface->ProjectFrom(p, hint);
+        }
+        EXPECT_TRUE(f.inside_domain);
+        EXPECT_LT((f.point - foot).norm(), 0.02) << s << " " << eta << " other skin at " << other;
+        EXPECT_NEAR(f.signed_distance_mm, kOut, 0.02) << s << " " << eta;
+        EXPECT_GT(f.normal.dot(wing->Normal(s, eta)), 0.999) << s << " " << eta;
+        ++cases;
+      }
+    }
+  }
+  EXPECT_EQ(cases, 24);
+}
+
+// The global search against dense sampling of the fitted surface itself: points inside the
+// wing between the skins near the trailing edge, at 20 .. 80 % of the way from the upper skin
+// to the lower, each started from the farther skin.
+TEST(WingSurface, ProjectionMatchesDenseSamplingFromTheFartherSkin) {
+  const WingSurface w = MakeOrFail(SeedWing(), WingSkin::kFull);
+  ASSERT_TRUE(w.surface);
+  const Surface& s = *w.surface;
+  const Eigen::Vector2d len = s.Domain().max;
+  const double v = 0.3 * len.y();
+  std::vector<Eigen::Vector3d> samples;  // round the contour at this span station, 0.17 mm apart
+  for (int i = 0; i <= 20000; ++i) samples.push_back(s.Point({len.x() * i / 20000.0, v}));
+  for (const double u_frac : {0.01, 0.03, 0.06, 0.1}) {
+    const Eigen::Vector2d upper(len.x() * u_frac, v), lower(len.x() * (1.0 - u_frac), v);
+    for (const double f : {0.2, 0.4, 0.6, 0.8}) {
+      const Eigen::Vector3d p = s.Point(upper) + f * (s.Point(lower) - s.Point(upper));
+      double best = 1e300;
+      for (const Eigen::Vector3d& q : samples) best = std::min(best, (q - p).norm());
+      const SurfaceProjection proj = s.ProjectFrom(p, f < 0.5 ? lower : upper);
+      EXPECT_LE((proj.point - p).norm(), best + 1e-9) << u_frac << " " << f;
+      EXPECT_GT((proj.point - p).norm(), best - 0.01) << u_frac << " " << f;
+      EXPECT_EQ(proj.normal.z() > 0, f < 0.5) << u_frac << " " << f;  // the nearer skin's side
+    }
+  }
 }
 
 TEST(WingSurface, BadSpecsAreErrorsNotThrows) {

@@ -146,7 +146,7 @@ TEST(AfpIncline, JointSpeedOnARapidCannotBeLowered) {
   EXPECT_FALSE(r.plan.has_value());
   ASSERT_EQ(r.candidates.size(), 1u);
   EXPECT_EQ(r.candidates.front().failure,
-            "kin.joint_speed at line 5, which is not a feed move: its speed cannot be lowered");
+            "kin.joint_speed at line 7, which is not a feed move: its speed cannot be lowered");
 }
 
 TEST(AfpIncline, GivesUpAfterTheFeedRounds) {
@@ -161,7 +161,7 @@ TEST(AfpIncline, GivesUpAfterTheFeedRounds) {
   EXPECT_EQ(calls, 4);
   ASSERT_EQ(r.candidates.size(), 1u);
   EXPECT_EQ(r.candidates.front().failure,
-            "kin.joint_speed at line 6: too fast (still, after lowering the feed 3 times)");
+            "kin.joint_speed at line 9: too fast (still, after lowering the feed 3 times)");
 }
 
 TEST(AfpIncline, AJudgesErrorStopsTheSearch) {

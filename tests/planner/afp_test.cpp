@@ -262,13 +262,16 @@ TEST(AfpProgram, LoweredFeedsWrittenOnTheirMovesAndRestored) {
 TEST(AfpOverTravel, ReportedForBAndC) {
   auto s = LoadAfpScene();
   ASSERT_NE(s, nullptr);
-  // The whole lower half of the cylinder (alpha 0..180 deg): inclined by 10 deg, B passes
-  // 90 deg at the side walls (q_z = -0.1228 at alpha = 0), seed 003 fig. 4.
-  s->surface = geom::MakeCylinder(250.0, false, 800.0, kPi * 250.0);
+  // Up the side walls of the cylinder: inclined by 10 deg, B passes 90 deg near them
+  // (q_z = -0.1228 at alpha = 0), seed 003 fig. 4. The course stops where its band's corner
+  // reaches the edge v = 424.26 mm (issue 26 item 6), 50.8 / sqrt 2 mm short of it: at
+  // alpha = 90 - (424.26 - 35.92) / 250 rad = 1 deg, where B = acos(-0.1228 cos 1 + 0.9848
+  // sin 1) = 96.06 deg. (The whole lower half, arc pi r, stopped at 8.2 deg: B 89.3.)
+  s->surface = geom::MakeCylinder(250.0, false, 1000.0, 848.51);
   const AfpPlan plan = PlanLay(*s, 45.0, 10.0, 5.0);
   ASSERT_EQ(plan.over_travel.size(), 1u);
   EXPECT_EQ(plan.over_travel[0].code, "afp-b-over-travel");
-  EXPECT_GT(plan.over_travel[0].worst_rad / kDeg, 97.0);
+  EXPECT_NEAR(plan.over_travel[0].worst_rad / kDeg, 96.06, 0.02);
   EXPECT_NEAR(plan.over_travel[0].limit_rad / kDeg, 90.0, 1e-12);
   EXPECT_NE(plan.over_travel[0].message.find("B reaches"), std::string::npos);
   // Normal pressure stays within B's travel there (B = acos(sin a) <= 90 deg).

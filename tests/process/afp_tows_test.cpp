@@ -7,6 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
+#include <string>
+
+#include "../geom/seed_wing.h"
+#include "stitchsim/geom/naca.h"
+#include "stitchsim/geom/wing_surface.h"
 
 namespace stitchsim::process {
 namespace {
@@ -105,6 +111,40 @@ TEST(afp_tows, AToolPointOffTheSurfaceIsNotOk) {
   EXPECT_FALSE(TowsAt(*plane, tool, TowLayout{16, 6.35}, nullptr).ok);
   tool.translation() = Eigen::Vector3d(45, 0, 0);  // centre on, right edge tow off the plate
   EXPECT_FALSE(TowsAt(*plane, tool, TowLayout{16, 6.35}, nullptr).ok);
+}
+
+// Issue 26 item 7: the tool point's foot is its closest point on the wing, whatever skin the
+// hint (the previous pose's foot) lies on. The roller on the lower skin near the trailing edge
+// (97.5 % chord at mid-span, the skins 13 mm apart), the hint on the upper skin at the same
+// station: before, the descent from the hint stopped on the upper skin and every tow was placed
+// there, 13 mm from the roller. Second route: the closed-form loft (naca.h).
+TEST(afp_tows, AHintOnTheOtherSkinOfTheWingDoesNotDecideTheFoot) {
+  std::string error;
+  const geom::WingSurface w =
+      geom::MakeWingSurface(geom::testing::SeedWingSpec(), geom::WingSkin::kFull, error);
+  ASSERT_TRUE(w.surface) << error;
+  const std::optional<geom::Wing> wing = geom::Wing::Make(geom::testing::SeedWingSpec(), error);
+  ASSERT_TRUE(wing) << error;
+  const Eigen::Vector2d len = w.surface->Domain().max;
+  for (const double s : {0.95, 0.05}) {  // lower skin, then upper
+    const double eta = 0.5;
+    const geom::WingDerivatives d = wing->Derivatives(s, eta);
+    const Eigen::Vector3d n = wing->Normal(s, eta);
+    Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
+    tool.linear().col(2) = n;                                          // head axis
+    tool.linear().col(1) = (d.d_ds - d.d_ds.dot(n) * n).normalized();  // chordwise travel
+    tool.linear().col(0) = tool.linear().col(1).cross(n);              // tows along the span
+    tool.translation() = d.point;
+    const Eigen::Vector2d hint(len.x() * (1.0 - s), len.y() * eta);  // the other skin
+    const TowCross c = TowsAt(*w.surface, tool, TowLayout{16, 6.35}, &hint);
+    ASSERT_TRUE(c.ok) << s;
+    EXPECT_LT((c.centre - d.point).norm(), 0.02) << s;
+    for (const Eigen::Vector3d& b : {c.boundary.front(), c.boundary.back()}) {
+      // 50.8 mm along the span either side, on the same skin.
+      EXPECT_NEAR((b - d.point).norm(), 50.8, 0.05) << s;
+      EXPECT_LT(std::abs((b - d.point).dot(n)), 0.5) << s;
+    }
+  }
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 // command line).
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "../geom/seed_wing.h"
@@ -59,6 +61,40 @@ TEST(WingScene, TheSeedWingIsTheLoftOfItsSections) {
       EXPECT_LT((p - wing->Point(s, eta)).norm(), 0.01) << s << " " << eta;
     }
   }
+}
+
+// Issue 26 item 7: a ply's reference origin projects onto the skin it lies over, whatever the
+// ply before it projected onto. Two plies near the trailing edge at mid-span (the skins 13 mm
+// apart there), origins 10 mm out from the upper and then the lower skin: the second
+// projection, started from the first's foot on the upper skin, stopped there (its local
+// minimum 23 mm away was nearer than the coarse grid's nearest point) and the lower ply took
+// the upper skin's normal, projecting its reference away from the wing. Second route: the
+// closed-form loft's outward normal (naca.h); a ply's projection is minus its foot's normal.
+TEST(WingScene, PlyReferenceProjectsOntoTheSkinItLiesOver) {
+  std::string error;
+  const std::optional<geom::Wing> wing = geom::Wing::Make(geom::testing::SeedWingSpec(), error);
+  ASSERT_TRUE(wing) << error;
+  constexpr double kUpperS = 0.05, kLowerS = 0.95, kEta = 0.5, kOut = 10.0;
+  const auto origin = [&](double s) {
+    const Eigen::Vector3d o = wing->Point(s, kEta) + kOut * wing->Normal(s, kEta);
+    char buf[120];
+    std::snprintf(buf, sizeof(buf), "[%.6f, %.6f, %.6f]", o.x(), o.y(), o.z());
+    return std::string(buf);
+  };
+  const auto ply = [&](const std::string& name, double s) {
+    return "  - name: " + name + "\n    angle_deg: 0\n    reference: {origin: " + origin(s) +
+           ", direction: [0, 1, 0]}\n    boundary_uv: [[100, 3000], [300, 3000], [300, 4000], "
+           "[100, 4000]]\n";
+  };
+  const fs::path dir = Folder("ply_skins");
+  Write(dir / "s.yaml", SeedScene("  skin: full\n") + "plies:\n" + ply("upper_te", kUpperS) +
+                            ply("lower_te", kLowerS));
+  const Loaded r = Load(dir / "s.yaml");
+  ASSERT_TRUE(r.scene) << r.message;
+  ASSERT_EQ(r.scene->plies.size(), 2u);
+  EXPECT_GT(r.scene->plies[0].projection.dot(-wing->Normal(kUpperS, kEta)), 0.999);
+  EXPECT_GT(r.scene->plies[1].projection.dot(-wing->Normal(kLowerS, kEta)), 0.999)
+      << r.scene->plies[1].projection.transpose();
 }
 
 TEST(WingScene, UnitsAnglesAndSkinAreRead) {

@@ -1,7 +1,8 @@
 // afp.coverage on hand-made laying lines over a plane: a rectangular ply filled exactly by
 // four straight courses passes with its figures reported (0 % bare, 0 % doubled); one course
 // left out fires "bare" on the line of the neighbouring course nearest the gap; one course
-// laid twice fires "doubled" on the second laying's line; a scene without plies skips the rule.
+// laid twice fires "doubled" on the second laying's line; a ply the scene does not define is
+// judged by what it lays.
 #include <gtest/gtest.h>
 
 #include "afp_test_support.h"
@@ -134,15 +135,36 @@ TEST(AfpCoverageRule, CoverageImageShowsTowsGapsAndOverlapsWhereTheyLie) {
   EXPECT_EQ(at(img.lo_uv.x() + 1, img.lo_uv.y() + 1), CoverageState::kNone);
 }
 
-TEST(AfpCoverageRule, SceneWithoutPliesSkipsTheRule) {
+// A ply the scene does not define (M70 P1 on a scene without plies, as `plan afp` writes its
+// course; issue 26 item 6) has no boundary: what it lays is measured (on the plane the course's
+// 64 x 320 cells of w / 4 are exactly its 101.6 x 508 mm, 100 % of its moves' length x 16 w)
+// and material laid twice fires "doubled" on the second laying's line. Before, a scene without
+// plies skipped the rule.
+TEST(AfpCoverageRule, APlyTheSceneDoesNotDefineIsJudgedByWhatItLays) {
   const auto scene = AfpScene(geom::MakePlane(4000, 4000));
   std::vector<trace::LineRecord> lines;
   AddCourse(*scene->surface, 0, 1, 100, lines);
-  const Report report = RunLines(*scene, lines);
-  EXPECT_EQ(RuleOf(report, "afp.coverage"), nullptr);
-  ASSERT_FALSE(report.skipped.empty());
-  EXPECT_EQ(report.skipped.front().id, "afp.coverage");
-  EXPECT_EQ(report.skipped.front().reason, "the scene has no plies");
+  Report report = RunLines(*scene, lines);
+  const RuleSummary* rule = RuleOf(report, "afp.coverage");
+  ASSERT_NE(rule, nullptr);
+  EXPECT_TRUE(rule->Applies());
+  EXPECT_EQ(rule->errors, 0);
+  ASSERT_EQ(rule->subjects.size(), 2U);
+  EXPECT_EQ(rule->subjects[0].subject, "ply 1 (not in the scene) laid, of tows x w x length");
+  EXPECT_NEAR(*rule->subjects[0].worst_value, 100.0, 1e-6);
+  EXPECT_EQ(rule->subjects[1].subject, "ply 1 (not in the scene) doubled");
+  EXPECT_EQ(*rule->subjects[1].worst_value, 0.0);
+  for (const auto& s : report.skipped) EXPECT_NE(s.id, "afp.coverage");
+
+  AddCourse(*scene->surface, 0, 2, 200, lines);  // the same course again
+  report = RunLines(*scene, lines);
+  rule = RuleOf(report, "afp.coverage");
+  ASSERT_NE(rule, nullptr);
+  EXPECT_EQ(rule->errors, 1);
+  EXPECT_NEAR(*rule->subjects[0].worst_value, 50.0, 1e-6);   // the same area for twice the tows
+  EXPECT_NEAR(*rule->subjects[1].worst_value, 100.0, 1e-6);  // all of it twice
+  ASSERT_EQ(rule->findings.size(), 1U);
+  EXPECT_GE(rule->findings[0].line, 200);
 }
 
 }  // namespace

@@ -5,8 +5,11 @@
 // bare and doubled area beyond the band of one tow width along the boundary (where the ply's
 // coverage policy governs), as percent of the ply's area beyond that band; material laid
 // outside is reported as a figure. A finding names the line that laid the course nearest the
-// worst bare (doubled) patch.
+// worst bare (doubled) patch. A ply the scene does not define (M70 P<n> past the scene's plies:
+// `plan afp` lays its course as one) has no boundary: its laid area is a figure and what it
+// lays twice is judged.
 #include <algorithm>
+#include <bit>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -21,6 +24,13 @@ namespace stitchsim::verify {
 namespace {
 
 using detail::LaidLine;
+
+// The map over the whole surface, for a ply the scene does not define (no boundary box).
+std::unique_ptr<process::CoverageMap> MapOverDomain(const geom::Surface& surface,
+                                                    const process::TowLayout& layout) {
+  const geom::Domain2 d = surface.Domain();
+  return std::make_unique<process::CoverageMap>(surface, d.min, d.max, layout.width_mm / 4);
+}
 
 // Halves `img` (each pixel the worst of four) until its longer side fits `max_side`.
 void Shrink(CoverageImage& img, int max_side) {
@@ -62,13 +72,18 @@ class CoverageRule final : public Rule {
     ply_ = record.ply;
     course_ = record.course;
     const LaidLine* line = laid_->Sample(record);
-    if (line == nullptr || line->ply < 1 || line->ply > static_cast<int>(plies_->size())) return;
-    const scene::PlySpec& spec = (*plies_)[static_cast<std::size_t>(line->ply) - 1];
-    if (spec.boundary_uv.size() < 3) return;
+    if (line == nullptr || line->ply < 1) return;
+    const scene::PlySpec* spec = SpecOf(line->ply);
+    if (spec != nullptr && spec->boundary_uv.size() < 3) return;
     Ply& ply = plies_laid_[line->ply];
-    if (!ply.map)
-      ply.map = process::MapForPly(laid_->Surface(), spec.boundary_uv, laid_->Layout()),
+    if (!ply.map) {
+      ply.map = spec != nullptr
+                    ? process::MapForPly(laid_->Surface(), spec->boundary_uv, laid_->Layout())
+                    : MapOverDomain(laid_->Surface(), laid_->Layout());
       ply.first_line = line->source_line;
+    }
+    ply.nominal_mm2 += (record.to.translation() - record.from.translation()).norm() *
+                       std::popcount(line->tows) * laid_->Layout().width_mm;
     for (std::size_t i = 0; i + 1 < line->poses.size(); ++i) {
       const process::TowCross &a = line->poses[i].cross, &b = line->poses[i + 1].cross;
       if (!a.ok || !b.ok) continue;
@@ -89,7 +104,11 @@ class CoverageRule final : public Rule {
   void Finish(const RuleContext&) override {
     EndCourse();
     for (auto& [index, ply] : plies_laid_) {
-      const scene::PlySpec& spec = (*plies_)[static_cast<std::size_t>(index) - 1];
+      if (SpecOf(index) == nullptr) {
+        FinishUndefinedPly(index, ply);
+        continue;
+      }
+      const scene::PlySpec& spec = *SpecOf(index);
       const process::PlyCoverage cov =
           process::MeasurePly(*ply.map, spec.boundary_uv, laid_->Layout().width_mm);
       const auto [bare, doubled, outside] = process::CoveragePercent(cov);
@@ -115,7 +134,51 @@ class CoverageRule final : public Rule {
   struct Ply {
     std::unique_ptr<process::CoverageMap> map;
     int first_line = 0;
+    /// Sum over laying lines of move length x laid tows x w, mm^2: what the tow masks say.
+    double nominal_mm2 = 0.0;
   };
+
+  // The scene's ply `index` (M70 P<index>), or nullptr for a ply the scene does not define
+  // (`plan afp` lays its course as one).
+  const scene::PlySpec* SpecOf(int index) const {
+    return index >= 1 && index <= static_cast<int>(plies_->size())
+               ? &(*plies_)[static_cast<std::size_t>(index) - 1]
+               : nullptr;
+  }
+
+  // A ply without a boundary has no bare area: what it lays is measured (a figure: percent of
+  // its moves' length x laid tows x w, 100 on a plane) and judged for material laid twice, as
+  // percent of the laid area.
+  void FinishUndefinedPly(int index, const Ply& ply) {
+    const process::CoverageGrid& g = ply.map->Grid();
+    double laid = 0.0, doubled = 0.0;
+    Eigen::Vector2d worst_uv = Eigen::Vector2d::Zero();
+    for (int iv = 0; iv < g.nv; ++iv) {
+      for (int iu = 0; iu < g.nu; ++iu) {
+        const int count = ply.map->Count(iu, iv);
+        if (count == 0) continue;
+        const double area = ply.map->CellArea(iu, iv);
+        laid += area;
+        if (count < 2) continue;
+        doubled += area;
+        worst_uv = ply.map->CellCentre(iu, iv);
+      }
+    }
+    const double pct = laid > 0 ? 100.0 * doubled / laid : 0.0;
+    const int line = doubled > 0 ? LineNear(ply, worst_uv) : ply.first_line;
+    const std::string name = "ply " + std::to_string(index) + " (not in the scene)";
+    Counted();
+    const double laid_pct = ply.nominal_mm2 > 0 ? 100.0 * laid / ply.nominal_mm2 : 0.0;
+    Figure(name + " laid, of tows x w x length", std::nullopt, laid_pct, ply.first_line);
+    Figure(name + " doubled", max_doubled_, pct, line);
+    if (pct <= max_doubled_) return;
+    char buf[300];
+    std::snprintf(buf, sizeof(buf),
+                  "%.3g %% of what %s lays is laid twice (limit %.3g %%), e.g. near (u, v) = "
+                  "(%.1f, %.1f) mm, by the course this line lays",
+                  pct, name.c_str(), max_doubled_, worst_uv.x(), worst_uv.y());
+    Record(FindingSeverity::kError, pct, max_doubled_, line, 0, name + " doubled", buf, nullptr);
+  }
 
   void EndCourse() {
     const auto it = plies_laid_.find(ply_);

@@ -400,7 +400,7 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
     rules.push_back(MakeAfpGapRule(ctx, laid));
     rules.push_back(MakeAfpOverlapRule(ctx, laid));
     rules.push_back(MakeAfpCompactionRule(ctx, laid));
-    if (!ctx.scene->plies.empty()) rules.push_back(MakeAfpCoverageRule(ctx, laid));
+    rules.push_back(MakeAfpCoverageRule(ctx, laid));
   }
   rules.push_back(MakeReachRule());
   rules.push_back(MakeJointLimitRule(ctx));
@@ -424,9 +424,6 @@ std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
 
 std::vector<SkippedRule> SkippedRules(const RuleContext& ctx) {
   std::vector<SkippedRule> skipped;
-  if (!ctx.scene->head.IsStitching() && ctx.scene->plies.empty()) {
-    skipped.push_back({"afp.coverage", "the scene has no plies"});
-  }
   if (!ctx.cell->timed) {
     for (const char* id : {"kin.acceleration", "kin.torque"}) {
       skipped.push_back({id, "the trace has no timed trajectory"});

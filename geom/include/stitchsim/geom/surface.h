@@ -59,8 +59,16 @@ class Surface {
     point = Point(uv);
     jacobian = Jacobian(uv);
   }
-  /// Closest point on the surface to `p` (part frame, mm).
+  /// Closest point on the surface to `p` (part frame, mm). Global on every surface whose
+  /// sheets can pass near each other (a closed wing's skins): never a local minimum from a
+  /// far start.
   virtual SurfaceProjection Project(const Eigen::Vector3d& p) const;
+  /// The same closest point, searched from `uv_start` first (a neighbouring point's foot):
+  /// the start makes the search faster, it never decides which sheet the foot is on.
+  virtual SurfaceProjection ProjectFrom(const Eigen::Vector3d& p,
+                                        const Eigen::Vector2d& /*uv_start*/) const {
+    return Project(p);
+  }
   /// Where the line p + t*dir crosses the surface nearest to p; false if it does not.
   virtual bool IntersectLine(const Eigen::Vector3d& p, const Eigen::Vector3d& dir,
                              Eigen::Vector3d& hit) const;

@@ -98,7 +98,11 @@ struct AfpPlan {
   std::string course_name;              ///< the path's name, or "lay<deg>"
   double lay_angle_rad = std::nan("");  ///< NaN when the course is a scene path
   double incline_rad = 0.0;
+  /// The course laid: the stretch of the path over which every tow of the head lies on the
+  /// surface (process::TowsAt), to 0.01 mm.
   double length_mm = 0.0;
+  double trimmed_start_mm = 0.0;  ///< path length left off before the course, where tows hang off
+  double trimmed_end_mm = 0.0;    ///< path length left off after it
   std::vector<AfpPoint> points;
   AfpAxisLimits limits;
   double b_min_rad = 0.0, b_max_rad = 0.0, c_min_rad = 0.0, c_max_rad = 0.0;  ///< used
@@ -114,9 +118,14 @@ std::unique_ptr<geom::Curve2> MakeLayAngleCourse(const geom::Domain2& domain, do
 std::optional<AfpPlan> PlanAfpCourse(const scene::Scene& scene, const scene::PathSpec* path,
                                      const AfpPlanOptions& options, DiagnosticSink& sink);
 
-/// Writes the programme (mm, G90, T<afp> M6, G0 to the start, G1 X Y Z A B C V per point;
-/// A B C = the dialect's Euler angles of the tool pose, V = course length). F (modal) on the
-/// first G1 and wherever a point's feed_fraction changes the feed.
+/// The ply number `plan afp` writes its course under: the one after the scene's plies (a ply
+/// the scene does not define; afp.coverage judges it by what it lays).
+int AfpCoursePly(const scene::Scene& scene);
+
+/// Writes the programme (mm, G90, T<afp> M6, M70 P<AfpCoursePly> and M71 P1, G0 to the start,
+/// M62 P0 (every tow of the head), G1 X Y Z A B C V per point, M63 P0, M72; A B C = the
+/// dialect's Euler angles of the tool pose, V = course length). F (modal) on the first G1 and
+/// wherever a point's feed_fraction changes the feed.
 void WriteAfpProgram(const AfpPlan& plan, const scene::Scene& scene,
                      const program::Dialect& dialect, std::ostream& out);
 

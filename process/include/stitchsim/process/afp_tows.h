@@ -70,10 +70,10 @@ struct TowCross {
   std::vector<Eigen::Vector3d> across;
 };
 
-/// The tow boundaries at `tool_part` (tool pose, part frame, mm). `uv_hint`: a parameter near
-/// the tool point's foot (the previous pose's), or nullptr for a global projection (a foot
-/// whose normal faces away from the head, on the far side of a thin or closed part, is looked
-/// for again among grid points that face it).
+/// The tow boundaries at `tool_part` (tool pose, part frame, mm). The tool point's foot is its
+/// global closest point (geom::Surface::ProjectFrom); `uv_hint` (the previous pose's foot, or
+/// nullptr) only speeds that search. A foot whose normal faces away from the head, on the far
+/// side of a thin or closed part, is looked for again among grid points that face it.
 /// `max_substep_mm` bounds the walk's chords (geom::WalkOnSurface); 0: half a tow width (the
 /// walk is exact on a cylinder and a sphere, second order in the chord elsewhere; planner and
 /// verifier both use the default).
