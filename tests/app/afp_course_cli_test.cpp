@@ -101,8 +101,8 @@ TEST(PlanAfpCourse, EveryAfpRuleJudgesThePlannedCourse) {
   const double length = 2.0 * (225.0 * std::sqrt(2.0) - 50.8);  // 534.796 mm
   const json* coverage = Rule(report, "afp.coverage");
   ASSERT_NE(coverage, nullptr);
-  const json* laid = Subject(*coverage, "ply 1 (not in the scene) laid, of tows x w x length");
-  const json* doubled = Subject(*coverage, "ply 1 (not in the scene) doubled");
+  const json* laid = Subject(*coverage, "ply 1 laid (of nominal)");
+  const json* doubled = Subject(*coverage, "ply 1 doubled");
   ASSERT_TRUE(laid && doubled) << coverage->dump(1);
   // The band's area L x 16 w, as percent of the moves' chords x 16 w (the chords are shorter
   // than the arcs by h^2 / (24 rho^2), 1e-6 here); cells of w / 4 painted by their centres:

@@ -150,9 +150,9 @@ TEST(AfpCoverageRule, APlyTheSceneDoesNotDefineIsJudgedByWhatItLays) {
   EXPECT_TRUE(rule->Applies());
   EXPECT_EQ(rule->errors, 0);
   ASSERT_EQ(rule->subjects.size(), 2U);
-  EXPECT_EQ(rule->subjects[0].subject, "ply 1 (not in the scene) laid, of tows x w x length");
+  EXPECT_EQ(rule->subjects[0].subject, "ply 1 laid (of nominal)");
   EXPECT_NEAR(*rule->subjects[0].worst_value, 100.0, 1e-6);
-  EXPECT_EQ(rule->subjects[1].subject, "ply 1 (not in the scene) doubled");
+  EXPECT_EQ(rule->subjects[1].subject, "ply 1 doubled");
   EXPECT_EQ(*rule->subjects[1].worst_value, 0.0);
   for (const auto& s : report.skipped) EXPECT_NE(s.id, "afp.coverage");
 

@@ -166,10 +166,10 @@ class CoverageRule final : public Rule {
     }
     const double pct = laid > 0 ? 100.0 * doubled / laid : 0.0;
     const int line = doubled > 0 ? LineNear(ply, worst_uv) : ply.first_line;
-    const std::string name = "ply " + std::to_string(index) + " (not in the scene)";
+    const std::string name = "ply " + std::to_string(index);  // not one of the scene's plies
     Counted();
     const double laid_pct = ply.nominal_mm2 > 0 ? 100.0 * laid / ply.nominal_mm2 : 0.0;
-    Figure(name + " laid, of tows x w x length", std::nullopt, laid_pct, ply.first_line);
+    Figure(name + " laid (of nominal)", std::nullopt, laid_pct, ply.first_line);
     Figure(name + " doubled", max_doubled_, pct, line);
     if (pct <= max_doubled_) return;
     char buf[300];
