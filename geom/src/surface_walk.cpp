@@ -25,6 +25,11 @@ SurfaceFoot ProjectNear(const Surface& s, const Eigen::Vector3d& p, Eigen::Vecto
   return out;
 }
 
+Eigen::Vector2d UvOfTangent(const Surface& s, const Eigen::Vector2d& uv, const Eigen::Vector3d& t) {
+  const Eigen::Matrix<double, 3, 2> j = s.Jacobian(uv);
+  return (j.transpose() * j).ldlt().solve(j.transpose() * t);
+}
+
 Eigen::Vector3d Tangential(const Eigen::Vector3d& w, const Eigen::Vector3d& n) {
   return (w - w.dot(n) * n).normalized();
 }
@@ -34,8 +39,7 @@ namespace {
 /// d n / ds at `uv` along the unit tangent `w` (central difference over `eps_mm` of arc).
 Eigen::Vector3d NormalRate(const Surface& s, const Eigen::Vector2d& uv, const Eigen::Vector3d& w) {
   constexpr double kEpsMm = 1e-3;
-  const Eigen::Matrix<double, 3, 2> j = s.Jacobian(uv);
-  const Eigen::Vector2d uv_rate = (j.transpose() * j).ldlt().solve(j.transpose() * w);
+  const Eigen::Vector2d uv_rate = UvOfTangent(s, uv, w);
   return (s.Normal(uv + kEpsMm * uv_rate) - s.Normal(uv - kEpsMm * uv_rate)) / (2.0 * kEpsMm);
 }
 

@@ -356,11 +356,7 @@ void WriteAfpProgram(const AfpPlan& plan, const scene::Scene& scene,
   // The course is a ply of its own, numbered after the scene's plies (docs/program-format.md,
   // "AFP programmes"): one course, every tow of the head added at the start, cut at the end.
   const auto code = [&](int m, std::optional<int> param, std::string comment) {
-    b.Clear();
-    b.m_codes = {m};
-    b.param = param;
-    b.comment = std::move(comment);
-    w.Write(b);
+    detail::WriteCode(w, b, m, param, std::move(comment));
   };
   code(dialect.m.ply_start, AfpCoursePly(scene),
        "PLY name=" + plan.course_name + ", a course of plan afp, not a scene ply");

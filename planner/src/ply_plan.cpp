@@ -171,9 +171,8 @@ SurfaceCurve KeepOffsetOnSurface(const geom::Surface& surface, const SurfaceCurv
   std::size_t best_a = 0, best_n = 0, run_a = 0;
   for (std::size_t i = 0; i < c.size(); ++i) {
     const CurvePoint& p = c[i];
-    const Eigen::Matrix<double, 3, 2> j = surface.Jacobian(p.uv);
-    const Eigen::Vector3d d = side * distance * p.normal.cross(p.tangent);
-    const Eigen::Vector2d duv = (j.transpose() * j).ldlt().solve(j.transpose() * d);
+    const Eigen::Vector2d duv =
+        geom::UvOfTangent(surface, p.uv, side * distance * p.normal.cross(p.tangent));
     if (!inner.Contains(p.uv + duv)) {
       run_a = i + 1;
     } else if (i + 1 - run_a > best_n) {

@@ -93,11 +93,7 @@ class PlyWriter {
     w_.Write(b_);
   }
   void Code(int m_code, std::optional<int> param, std::string comment = {}) {
-    b_.Clear();
-    b_.m_codes = {m_code};
-    b_.param = param;
-    b_.comment = std::move(comment);
-    w_.Write(b_);
+    detail::WriteCode(w_, b_, m_code, param, std::move(comment));
   }
   void Feed(const PlyPoint& p) {
     b_.Clear();

@@ -1,19 +1,10 @@
 #include "detail/smooth_curve.h"
 
-#include <Eigen/Dense>
 #include <algorithm>
 
+#include "stitchsim/geom/surface_walk.h"
+
 namespace stitchsim::planner::detail {
-namespace {
-
-// d(u, v) along the unit surface tangent `t` at `uv` (least squares through the Jacobian).
-Eigen::Vector2d UvAlong(const geom::Surface& surface, const Eigen::Vector2d& uv,
-                        const Eigen::Vector3d& t) {
-  const Eigen::Matrix<double, 3, 2> j = surface.Jacobian(uv);
-  return (j.transpose() * j).ldlt().solve(j.transpose() * t);
-}
-
-}  // namespace
 
 SmoothCurve::SmoothCurve(const geom::Surface& surface, const SurfaceCurve& c) {
   std::vector<const CurvePoint*> kept;
@@ -31,8 +22,8 @@ SmoothCurve::SmoothCurve(const geom::Surface& surface, const SurfaceCurve& c) {
   std::vector<Eigen::Vector2d> rhs(n, Eigen::Vector2d::Zero());
   auto h = [&](std::size_t i) { return s_[i + 1] - s_[i]; };
   auto secant = [&](std::size_t i) { return Eigen::Vector2d((uv_[i + 1] - uv_[i]) / h(i)); };
-  const Eigen::Vector2d slope0 = UvAlong(surface, uv_.front(), kept.front()->tangent);
-  const Eigen::Vector2d slope1 = UvAlong(surface, uv_.back(), kept.back()->tangent);
+  const Eigen::Vector2d slope0 = geom::UvOfTangent(surface, uv_.front(), kept.front()->tangent);
+  const Eigen::Vector2d slope1 = geom::UvOfTangent(surface, uv_.back(), kept.back()->tangent);
   diag[0] = 2.0 * h(0);
   upper[0] = h(0);
   rhs[0] = 6.0 * (secant(0) - slope0);

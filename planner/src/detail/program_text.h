@@ -3,6 +3,9 @@
 // head), the ending, and the pose words.
 
 #include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <utility>
 
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/block.h"
@@ -28,6 +31,16 @@ inline void WriteOpening(program::ProgramWriter& w, program::Block& b,
   b.m_codes = {dialect.m.tool_change};
   w.Write(b);
   b.Clear();
+}
+
+/// One block of an M code with an optional P word and comment (a ply, course or tow mark).
+inline void WriteCode(program::ProgramWriter& w, program::Block& b, int m_code,
+                      std::optional<int> param, std::string comment = {}) {
+  b.Clear();
+  b.m_codes = {m_code};
+  b.param = param;
+  b.comment = std::move(comment);
+  w.Write(b);
 }
 
 /// What every planned programme ends with: the programme end code, the mark, flushed.

@@ -24,6 +24,10 @@ struct SurfaceFoot {
 /// Closest surface point to `p` by Gauss-Newton from `uv`. Not converged: no point near.
 SurfaceFoot ProjectNear(const Surface& s, const Eigen::Vector3d& p, Eigen::Vector2d uv);
 
+/// The (u, v) step whose image J d(u, v) is closest to the tangent vector `t` at `uv` (least
+/// squares through the Jacobian; exact for a vector in the tangent plane).
+Eigen::Vector2d UvOfTangent(const Surface& s, const Eigen::Vector2d& uv, const Eigen::Vector3d& t);
+
 /// `w` without its component along the unit `n`, made unit.
 Eigen::Vector3d Tangential(const Eigen::Vector3d& w, const Eigen::Vector3d& n);
 
