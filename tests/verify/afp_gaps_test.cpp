@@ -5,6 +5,8 @@
 // course between laid tows is a gap of its width; bits beyond the head's tows are findings.
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include "afp_test_support.h"
 
 namespace stitchsim::verify {
@@ -13,15 +15,16 @@ namespace {
 using namespace testing;
 
 // Course 1 along +u at v = `v0` (lines 10..13), course 2 at v = v0 + `spacing` (lines
-// 20..23), running along +u or back along -u, 4 lines of 100 mm each.
+// 20..23), running along +u or back along -u, 4 lines of 100 mm each; course 1 lays
+// `first_tows`, course 2 `tows`.
 std::vector<trace::LineRecord> TwoCourses(const geom::Surface& plane, double spacing,
                                           bool second_backwards, std::uint64_t tows = 0xFFFF,
-                                          double v0 = 0.0) {
+                                          double v0 = 0.0, std::uint64_t first_tows = 0xFFFF) {
   std::vector<trace::LineRecord> lines;
   const Eigen::Vector2d x(1, 0);
   for (int i = 0; i < 4; ++i) {
     lines.push_back(LayLine(10 + i, ToolAt(plane, Eigen::Vector2d(-200 + 100 * i, v0), x),
-                            ToolAt(plane, Eigen::Vector2d(-100 + 100 * i, v0), x), 0xFFFF, 1));
+                            ToolAt(plane, Eigen::Vector2d(-100 + 100 * i, v0), x), first_tows, 1));
   }
   trace::LineRecord between;  // retract and move over: course 0, lays nothing
   between.source_line = 15;
@@ -97,6 +100,38 @@ TEST(AfpGaps, GapsAndOverlapsOnACylinderReadAlongTheSurface) {
         ASSERT_FALSE(rule->findings.empty());
         EXPECT_EQ(rule->findings.front().line, 20);
         EXPECT_NEAR(rule->findings.front().value, std::abs(g), 0.01 * std::abs(g));
+      }
+    }
+  }
+}
+
+// Courses of a narrower ply (issue 26 item 1: head tows 8..9 of 16, and tow 8 alone): the
+// facing edges are looked for within 0.75 of the laid width, so the next course but one is not
+// taken for a neighbour. Centre lines n w + g apart (n tows; the band's offset from the tool
+// point is the same on both courses) leave a gap g, or an overlap -g, read on course 2's first
+// line; laid edge to edge, nothing.
+TEST(AfpGaps, NarrowCoursesGapAndOverlapByTheirSpacing) {
+  const auto scene = AfpScene(geom::MakePlane(4000, 4000));
+  for (const auto& [n, mask] :
+       {std::pair{2, std::uint64_t{0x180}}, std::pair{1, std::uint64_t{0x80}}}) {
+    for (const double g : {0.0, 1.0, -1.2}) {
+      SCOPED_TRACE(::testing::Message() << n << " tows, offset " << g);
+      const Report report =
+          RunLines(*scene, TwoCourses(*scene->surface, n * kTowWidth + g, false, mask, 0.0, mask));
+      const RuleSummary* gap = RuleOf(report, "afp.gap");
+      const RuleSummary* overlap = RuleOf(report, "afp.overlap");
+      ASSERT_NE(gap, nullptr);
+      ASSERT_NE(overlap, nullptr);
+      EXPECT_GT(gap->checked, 0);
+      const RuleSummary* fired = g > 0 ? gap : overlap;
+      const RuleSummary* quiet = g > 0 ? overlap : gap;
+      EXPECT_NEAR(fired->worst_value.value_or(0.0), std::abs(g), 1e-6);
+      EXPECT_NEAR(quiet->worst_value.value_or(0.0), 0.0, 1e-9);
+      EXPECT_EQ(quiet->errors, 0);
+      EXPECT_EQ(fired->errors, g == 0.0 ? 0 : 4);
+      if (g != 0.0) {
+        ASSERT_FALSE(fired->findings.empty());
+        EXPECT_EQ(fired->findings.front().line, 20);
       }
     }
   }
