@@ -5,7 +5,7 @@
 #include <string>
 
 #include "cli_common.h"
-#include "pose_track.h"
+#include "stitchsim/run/pose_track.h"
 #include "stitchsim/sim/executor.h"
 #include "stitchsim/trace/trace_file.h"
 #include "stitchsim/verify/verifier.h"
@@ -29,7 +29,7 @@ struct ChunkedInvocation {
 struct ChunkedOutcome {
   std::unique_ptr<verify::Verifier> verifier;  ///< merged, not finished
   trace::TraceFileSummary summary;
-  PoseTrack poses{0};  ///< ChunkedInvocation::chunk_poses > 0: every chunk's, in order
+  run::PoseTrack poses{0};  ///< ChunkedInvocation::chunk_poses > 0: every chunk's, in order
 };
 
 /// "I/N" with 1 <= I <= N (printed error otherwise).

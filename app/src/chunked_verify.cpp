@@ -169,9 +169,9 @@ ChunkResult RunChunk(const ChunkSetup& setup, const sim::Chunk& chunk,
   Gate gate(*result.verifier, result.chunk, lines_done);
   sim::TimingSink timing(*timing_cell, *setup.robot, setup.timing, gate);
   gate.SetTiming(&timing);
-  std::optional<PoseRecorder> recorder;
+  std::optional<run::PoseRecorder> recorder;
   if (setup.chunk_poses > 0) {
-    result.poses = std::make_unique<PoseTrack>(setup.chunk_poses);
+    result.poses = std::make_unique<run::PoseTrack>(setup.chunk_poses);
     recorder.emplace(*result.poses, nullptr);
     gate.SetRecorder(&*recorder);
   }
@@ -197,7 +197,7 @@ ChunkResult RunChunk(const ChunkSetup& setup, const sim::Chunk& chunk,
   result.end.output = std::move(gate.end_);
   result.timed = gate.timed_;
   result.lines = gate.lines_;
-  if (result.poses) result.poses->Thin(PointedLines(*result.verifier), INT_MAX);
+  if (result.poses) result.poses->Thin(run::PointedLines(*result.verifier), INT_MAX);
   result.ok = true;
   return result;
 }

@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "pose_track.h"
 #include "stitchsim/common/exact_sum.h"
 #include "stitchsim/process/stitch_cycle.h"
 #include "stitchsim/program/dialect.h"
+#include "stitchsim/run/pose_track.h"
 #include "stitchsim/sim/chunk.h"
 #include "stitchsim/sim/collision.h"
 #include "stitchsim/sim/mujoco_cell.h"
@@ -64,7 +64,7 @@ struct ChunkResult {
   std::unique_ptr<verify::Verifier> verifier;  ///< the chunk's lines only
   ExactSum timed;                              ///< timed durations of the chunk's lines (s)
   long lines = 0;                              ///< motion lines counted
-  std::unique_ptr<PoseTrack> poses;            ///< ChunkSetup::chunk_poses > 0: the chunk's
+  std::unique_ptr<run::PoseTrack> poses;       ///< ChunkSetup::chunk_poses > 0: the chunk's
   bool ok = false;
   std::string error;  ///< when !ok
 };
@@ -86,7 +86,7 @@ class ChunkMerger {
   std::unique_ptr<verify::Verifier> TakeVerifier() { return std::move(verifier_); }
   const ExactSum& Timed() const { return timed_; }
   /// The taken chunks' poses, in order (empty without ChunkSetup::chunk_poses).
-  PoseTrack& Poses() { return poses_; }
+  run::PoseTrack& Poses() { return poses_; }
   const ChunkResult* Last() const { return last_ ? &*last_ : nullptr; }
   const BoundaryState& FirstStart() const { return first_start_; }
   /// The first boundary that did not match, and what differed (empty: none).
@@ -95,7 +95,7 @@ class ChunkMerger {
  private:
   std::unique_ptr<verify::Verifier> verifier_;
   ExactSum timed_;
-  PoseTrack poses_{std::numeric_limits<std::size_t>::max()};
+  run::PoseTrack poses_{std::numeric_limits<std::size_t>::max()};
   int taken_ = 0;
   std::optional<ChunkResult> last_;  ///< without its verifier (absorbed)
   BoundaryState first_start_;
@@ -107,7 +107,7 @@ struct ChunkedRun {
   std::string error;
   std::unique_ptr<verify::Verifier> verifier;  ///< the merged verifier
   ExactSum timed;
-  PoseTrack poses{std::numeric_limits<std::size_t>::max()};  ///< every chunk's, in order
+  run::PoseTrack poses{std::numeric_limits<std::size_t>::max()};  ///< every chunk's, in order
   int reruns = 0;
   std::string first_mismatch;  ///< what differed at the first chunk run again
   BoundaryState start, end;    ///< of the first and the last chunk run

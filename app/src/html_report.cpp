@@ -138,10 +138,10 @@ json DrawingsJson(const verify::Verifier& v) {
   return out;
 }
 
-json PosesJson(const PoseTrack& track, json& path) {
+json PosesJson(const run::PoseTrack& track, json& path) {
   std::vector<std::int32_t> lines;
   std::vector<float> q, t, tool;
-  for (const LinePose& p : track.Poses()) {
+  for (const run::LinePose& p : track.Poses()) {
     lines.push_back(p.line);
     q.insert(q.end(), p.q.begin(), p.q.end());
     t.push_back(p.time_s);

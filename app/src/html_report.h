@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cli_common.h"
-#include "pose_track.h"
+#include "stitchsim/run/pose_track.h"
 #include "stitchsim/verify/report.h"
 #include "stitchsim/verify/verifier.h"
 
@@ -19,7 +19,7 @@ struct HtmlInputs {
   const verify::Report* report = nullptr;
   const verify::Verifier* verifier = nullptr;  ///< with stitch marks
   const LoadedScene* scene = nullptr;
-  const PoseTrack* poses = nullptr;
+  const run::PoseTrack* poses = nullptr;
   /// Snapshot PNGs (file name, file bytes), in the order shown.
   std::vector<std::pair<std::string, std::string>> snapshots;
 };

@@ -17,7 +17,6 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "html_report.h"
-#include "pose_track.h"
 #include "snapshots.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/common/progress.h"
@@ -25,6 +24,7 @@
 #include "stitchsim/process/stitch_cycle.h"
 #include "stitchsim/program/dialect.h"
 #include "stitchsim/program/identity.h"
+#include "stitchsim/run/pose_track.h"
 #include "stitchsim/sim/dynamics.h"
 #include "stitchsim/sim/executor.h"
 #include "stitchsim/sim/mujoco_cell.h"
@@ -60,7 +60,7 @@ struct VerifyArgs {
 // --html: the snapshots (into --snapshots' folder, or a scratch folder removed afterwards)
 // read back, then the page.
 int WriteHtml(const VerifyArgs& a, const VerifySession& vs, const verify::Report& report,
-              const verify::Verifier& verifier, PoseTrack& poses) {
+              const verify::Verifier& verifier, run::PoseTrack& poses) {
   namespace fs = std::filesystem;
   const bool scratch = a.snapshots.empty();
   const fs::path dir =
@@ -86,7 +86,7 @@ int WriteHtml(const VerifyArgs& a, const VerifySession& vs, const verify::Report
   }
   if (scratch) fs::remove_all(dir, ec);
   poses.SetMaxPoses(HtmlLimits{}.max_poses);
-  poses.Thin(PointedLines(verifier), INT_MAX);
+  poses.Thin(run::PointedLines(verifier), INT_MAX);
   in.report = &report;
   in.verifier = &verifier;
   in.scene = &vs.ls;

@@ -14,9 +14,9 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "html_report.h"
-#include "pose_track.h"
 #include "stitchsim/common/progress.h"
 #include "stitchsim/program/identity.h"
+#include "stitchsim/run/pose_track.h"
 #include "stitchsim/sim/dynamics.h"
 #include "stitchsim/sim/executor.h"
 #include "stitchsim/sim/timing.h"
@@ -130,8 +130,8 @@ int RunSerial(const VerifyRunOptions& a, VerifySession& vs, sim::ProgramInput& i
               const program::ProgramIdentity& id, BoundedDiagnosticSink& diagnostics,
               VerifyRun& out) {
   auto verifier = std::make_unique<verify::Verifier>(vs.Rules(), a.keep_stitch_marks);
-  out.poses = PoseTrack(HtmlLimits{}.max_poses);
-  PoseRecorder recorder(out.poses, verifier.get());
+  out.poses = run::PoseTrack(HtmlLimits{}.max_poses);
+  run::PoseRecorder recorder(out.poses, verifier.get());
   TeeSink rules(*verifier, a.record_poses ? &recorder : nullptr);
   std::unique_ptr<trace::TraceFileWriter> saved;
   if (!a.save_trace.empty()) {

@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "pose_track.h"
+#include "stitchsim/run/pose_track.h"
 #include "stitchsim/verify/report.h"
 #include "stitchsim/verify/verifier.h"
 #include "verify_session.h"
@@ -36,7 +36,7 @@ struct VerifyRun {
   std::unique_ptr<VerifySession> session;
   std::unique_ptr<verify::Verifier> verifier;  ///< finished into `report`
   verify::Report report;
-  PoseTrack poses{0};  ///< VerifyRunOptions::record_poses: the line-end poses, in line order
+  run::PoseTrack poses{0};  ///< VerifyRunOptions::record_poses: the line-end poses, in line order
 };
 
 /// Runs the programme: kExitOk with `out` filled (with a shard: the part written, `out` empty),

@@ -1,9 +1,9 @@
-#include "pose_track.h"
+#include "stitchsim/run/pose_track.h"
 
 #include <algorithm>
 #include <limits>
 
-namespace stitchsim::app {
+namespace stitchsim::run {
 
 void PoseTrack::Add(const LinePose& pose) {
   if (!poses_.empty() && poses_.back().line == pose.line) {
@@ -58,4 +58,4 @@ void PoseRecorder::OnSample(const trace::TraceSample& s) {
   }
 }
 
-}  // namespace stitchsim::app
+}  // namespace stitchsim::run

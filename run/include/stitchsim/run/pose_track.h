@@ -11,7 +11,7 @@
 #include "stitchsim/trace/trace.h"
 #include "stitchsim/verify/verifier.h"
 
-namespace stitchsim::app {
+namespace stitchsim::run {
 
 struct LinePose {
   int line = 0;                 ///< programme line (the pose at its end)
@@ -59,4 +59,4 @@ class PoseRecorder : public trace::TraceSink {
   const verify::Verifier* verifier_;
 };
 
-}  // namespace stitchsim::app
+}  // namespace stitchsim::run
