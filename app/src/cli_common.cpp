@@ -75,13 +75,8 @@ int WriteProgramAndCsv(const std::string& program, const std::string& csv,
 
 std::optional<LoadedScene> LoadSceneAndRobot(const std::filesystem::path& scene_file) {
   DiagnosticSink sink;
-  LoadedScene out;
-  out.scene = scene::LoadScene(scene_file, sink, SceneLoadOptions());
-  if (out.scene) {
-    auto robot = sim::LoadRobotModel(out.scene->cell_urdf, sink);
-    if (robot) out.robot = std::make_unique<sim::RobotModel>(std::move(*robot));
-  }
-  if (PrintDiagnostics(sink) || !out.scene || !out.robot) return std::nullopt;
+  std::optional<LoadedScene> out = run::LoadScene(scene_file, SceneLoadOptions(), sink);
+  if (PrintDiagnostics(sink)) return std::nullopt;
   return out;
 }
 

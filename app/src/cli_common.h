@@ -12,8 +12,8 @@
 
 #include "stitchsim/common/diagnostics.h"
 #include "stitchsim/program/dialect.h"
+#include "stitchsim/run/loaded_scene.h"
 #include "stitchsim/scene/scene.h"
-#include "stitchsim/sim/robot_model.h"
 
 namespace stitchsim::app {
 
@@ -52,11 +52,7 @@ int WriteProgramAndCsv(const std::string& program, const std::string& csv,
                        const std::function<void(std::ostream&)>& write_program,
                        const std::function<void(std::ostream&)>& write_csv);
 
-/// A loaded scene and its robot model.
-struct LoadedScene {
-  std::unique_ptr<scene::Scene> scene;
-  std::unique_ptr<sim::RobotModel> robot;
-};
+using run::LoadedScene;
 
 /// Loads the scene and the cell URDF it names; prints diagnostics; nullopt on any error.
 std::optional<LoadedScene> LoadSceneAndRobot(const std::filesystem::path& scene_file);
