@@ -1,16 +1,15 @@
-// Off-part moves between lay-ups (planner/sequence_offpart.h): retract and approach along the
+// Off-part moves between lay-ups (planner/sequence/offpart.h): retract and approach along the
 // tool z, travel kept clear of the part. Heights are checked by closed forms (plane: z; convex
 // cylinder: distance from the axis less the radius), not by the surface's own projection.
-#include "stitchsim/planner/sequence_offpart.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "stitchsim/common/units.h"
+#include "stitchsim/planner/sequence/offpart.h"
+
 namespace stitchsim::planner {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Tool pose on a convex cylinder of radius r (axis along x at z = -r) at angle `a` from the
 // crown, travel along +x: z = outward normal, y = +x, x = y cross z.
@@ -124,7 +123,7 @@ TEST(OffPart, HeightAboveSurfaceMatchesTheClosedForm) {
 // way each time, near-half turns that all lean one way (179 deg) wind the wrist up: two of them
 // are 358 deg, past a6's 350. The policy turns back instead, and leaves small turns alone.
 TEST(OffPart, HalfTurnsUnwindTheHeadInsteadOfWindingIt) {
-  const double deg = kPi / 180.0;
+  const double deg = kDeg;
   double twist = 0.0, worst = 0.0;
   for (int i = 0; i < 20; ++i) {
     twist += UnwindingTurn(twist, 179.0 * deg);

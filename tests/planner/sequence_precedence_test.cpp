@@ -1,20 +1,19 @@
-// Footprints, overlap and the precedence network (planner/sequence_precedence.h), on
+// Footprints, overlap and the precedence network (planner/sequence/precedence.h), on
 // programmes written here and read back (program/afp_program.h). Areas against hand
 // computations; the network against the seed's rule and its Figure 3; course-level moves.
-#include "stitchsim/planner/sequence_precedence.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <sstream>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
+#include "stitchsim/planner/sequence/precedence.h"
 #include "stitchsim/program/tool_pose.h"
 
 namespace stitchsim::planner {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kW = 6.35;  // tow width; 16 tows: 101.6 mm
 const process::TowLayout kLayout{16, kW};
 
@@ -24,7 +23,7 @@ std::string PoseWords(const Eigen::Isometry3d& t) {
   std::ostringstream s;
   s.precision(10);
   s << "X" << t.translation().x() << " Y" << t.translation().y() << " Z" << t.translation().z()
-    << " A" << a.x() * 180 / kPi << " B" << a.y() * 180 / kPi << " C" << a.z() * 180 / kPi;
+    << " A" << RadToDeg(a.x()) << " B" << RadToDeg(a.y()) << " C" << RadToDeg(a.z());
   return s.str();
 }
 

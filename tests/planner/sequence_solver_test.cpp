@@ -4,8 +4,6 @@
 // beats it; outputs are deterministic, visit every course once, and respect unidirectional
 // lay-up; hand-computable cases.
 
-#include "stitchsim/planner/sequence_solver.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,10 +13,11 @@
 #include <random>
 #include <set>
 
+#include "stitchsim/common/units.h"
+#include "stitchsim/planner/sequence/solver.h"
+
 namespace stitchsim::planner {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // ---- An independent pricing of an order, straight from the problem's definition. ----
 double Norm(const SequenceProblem& p, const std::vector<double>& a, const std::vector<double>& b) {
@@ -219,6 +218,32 @@ TEST(SequenceSolver, TimeLimitCutsWholeRounds) {
   ExpectValid(p, a);
   EXPECT_EQ(a.order, b.order);
   EXPECT_GE(a.cost, SolveLocalSearch(p).cost);
+  // The cut says so; the run with no rounds to run finished them all.
+  EXPECT_EQ(a.status, SolveStatus::kTimeLimit);
+  EXPECT_EQ(b.status, SolveStatus::kRoundCap);
+}
+
+// Each solver says how it stopped: the exact one proves its answer, a search that runs all its
+// rounds (no limit, or a limit far beyond them) finished, the seed's method ends by its caps.
+TEST(SequenceSolver, StatusSaysHowTheSearchStopped) {
+  Gen g{std::mt19937_64(9)};
+  const SequenceProblem p = g.Make(0, 12, CostNorm::kL1, true, false);
+  EXPECT_EQ(SolveExact(p)->status, SolveStatus::kOptimal);
+  EXPECT_EQ(SolveSeedMethod(p).status, SolveStatus::kRoundCap);
+  LocalSearchOptions generous;
+  generous.time_limit_s = 1000;
+  generous.max_rounds = 50;
+  const SequenceSolution finished = SolveLocalSearch(p, generous);
+  EXPECT_EQ(finished.status, SolveStatus::kRoundCap);
+  EXPECT_STREQ(ToString(finished.status), "round-cap");
+  LocalSearchOptions tiny;
+  tiny.time_limit_s = 1e-12;
+  const SequenceSolution cut = SolveLocalSearch(p, tiny);
+  EXPECT_EQ(cut.status, SolveStatus::kTimeLimit);
+  EXPECT_STREQ(ToString(cut.status), "time-limit");
+  // The finished search ran its 50 rounds (each counted in iterations); the cut one none.
+  EXPECT_GE(finished.iterations, 50);
+  EXPECT_LT(cut.iterations, finished.iterations);
 }
 
 // Three unit courses on a line (L1, one axis) given in a bad order: [4,5], [0,1], [2,3].

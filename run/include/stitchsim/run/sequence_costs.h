@@ -3,36 +3,43 @@
 // lay-up start and end, laid forwards and backwards, as machine axes (the cell's IK and rail
 // policy), and the tool point. The planner's solvers see only points and weights.
 #include <Eigen/Geometry>
-#include <optional>
+#include <array>
 #include <string>
 #include <vector>
 
-#include "stitchsim/planner/sequence_solver.h"
+#include "stitchsim/planner/sequence/solver.h"
 #include "stitchsim/program/afp_program.h"
-#include "stitchsim/scene/scene.h"
 #include "stitchsim/sim/cell.h"
+#include "stitchsim/trace/joints.h"
 
-namespace stitchsim::app {
+namespace stitchsim::run {
 
 enum class Measure { kAxes, kTime, kTool };
 inline constexpr Measure kMeasures[] = {Measure::kAxes, Measure::kTime, Measure::kTool};
 const char* MeasureName(Measure m);  ///< "axes", "time", "tool"
 const char* MeasureUnit(Measure m);  ///< "", "s", "mm"
 
+/// One value per measure, kMeasures order: axes (weighted, unitless), time s, tool mm.
+using Costs = std::array<double, 3>;
+
+/// Joints as the axes measure's point: rail mm, a1..a6 and rotator degrees (model order). The
+/// one conversion of joints to axes, for course ends and lay-up stations alike.
+std::vector<double> AxesOf(const trace::JointVector& q);
+
 /// One course end (or home) in every measure: the joints (rail mm, revolute deg) and the tool
 /// point (mm).
 struct EndPoint {
-  std::vector<double> axes;  ///< kNumJoints values: rail mm, a1..a6 and rotator deg
-  Eigen::Vector3d tool = Eigen::Vector3d::Zero();
-  bool ok = false;     ///< the cell reaches it
-  std::string reason;  ///< when not ok: the IK's words
+  std::vector<double> axes;                        ///< kNumJoints values: AxesOf the IK joints
+  Eigen::Vector3d tool = Eigen::Vector3d::Zero();  ///< part frame, mm: the pose asked for
+  bool ok = false;                                 ///< the cell reaches it
+  std::string reason;                              ///< when not ok: the IK's words
 };
 
 /// The four ends of every course (row 4 i + k as in planner::SequenceProblem), and home.
 struct CourseEnds {
-  std::vector<EndPoint> ends;  ///< 4 per course
-  EndPoint home;
-  std::vector<bool> reversible;  ///< both backward ends reachable
+  std::vector<EndPoint> ends;    ///< 4 per course: start, end forwards; start, end backwards
+  EndPoint home;                 ///< the run's home pose
+  std::vector<bool> reversible;  ///< per course: both backward ends reachable
 };
 
 /// IK at every course's lay-up ends (forwards and backwards) and at `home` (part frame, mm).
@@ -44,7 +51,7 @@ CourseEnds SolveCourseEnds(const sim::CellSetup& cell, const program::AfpProgram
 /// degree; index by joint), time by 1 / each joint's top speed (norm max), tool Euclidean.
 struct MeasureSpec {
   planner::CostNorm norm = planner::CostNorm::kL1;
-  std::vector<double> weights;
+  std::vector<double> weights;  ///< one per coordinate of the measure's points
 };
 MeasureSpec SpecOf(Measure m, const sim::RobotModel& robot,
                    const std::vector<double>& axis_weights);
@@ -59,4 +66,16 @@ planner::SequenceProblem SetProblem(const CourseEnds& ends, const std::vector<in
 /// The point of an end in measure m.
 std::vector<double> PointOf(const EndPoint& e, Measure m);
 
-}  // namespace stitchsim::app
+/// The cost of each move of `visits` in one measure: entry i is the move into visit i (from
+/// home or the previous visit's end); one more entry, the move home, when `finish`.
+std::vector<double> MoveCosts(const CourseEnds& ends,
+                              const std::vector<program::CourseVisit>& visits,
+                              const MeasureSpec& spec, Measure m, bool finish);
+
+/// Lay-up motion in every measure (the same in any order): the axes' weighted travel between
+/// the stations' IK solutions (`axes_spec`, from home), the time at the programmed feeds, and
+/// the tool path.
+Costs LayupCosts(const sim::CellSetup& cell, const program::AfpProgram& program,
+                 const MeasureSpec& axes_spec);
+
+}  // namespace stitchsim::run

@@ -38,12 +38,24 @@ struct Visit {
   friend bool operator==(const Visit&, const Visit&) = default;
 };
 
+/// How a solver stopped, so that an order cut off by a limit says so (ompl's PlannerStatus).
+enum class SolveStatus {
+  kOptimal,    ///< proven optimal (exact)
+  kRoundCap,   ///< a heuristic that ran all the rounds its caps allow (local: max_rounds; the
+               ///< seed's method: patience, depth, iterations): a local optimum, unproven
+  kTimeLimit,  ///< the local search's time limit cut its rounds: the best found so far
+  kGiven,      ///< not solved: the caller's order (`sequence --order`)
+};
+/// "optimal", "round-cap", "time-limit", "given".
+const char* ToString(SolveStatus status);
+
 struct SequenceSolution {
-  std::vector<Visit> order;     ///< every course exactly once
-  double cost = 0.0;            ///< start -> ... -> finish (if any), by PathCost
-  std::string solver;           ///< "seed", "local", "exact", "given"
-  double seconds = 0.0;         ///< wall time taken (reported, never used to decide)
-  std::int64_t iterations = 0;  ///< solver-specific work count (reported)
+  std::vector<Visit> order;                  ///< every course exactly once
+  double cost = 0.0;                         ///< start -> ... -> finish (if any), by PathCost
+  std::string solver;                        ///< "seed", "local", "exact", "given"
+  SolveStatus status = SolveStatus::kGiven;  ///< set by the solver that made `order`
+  double seconds = 0.0;                      ///< wall time taken (reported, never used to decide)
+  std::int64_t iterations = 0;               ///< solver-specific work count (reported)
 };
 
 /// Cost of one move between two points of dim values each.

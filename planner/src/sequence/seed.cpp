@@ -42,8 +42,8 @@
 #include <chrono>
 #include <limits>
 
-#include "sequence_detail.h"
-#include "stitchsim/planner/sequence_solver.h"
+#include "detail.h"
+#include "stitchsim/planner/sequence/solver.h"
 
 namespace stitchsim::planner {
 
@@ -241,10 +241,9 @@ int PickSeed(SeedGraph& g, const SequenceProblem& p, std::int64_t& paths) {
 }  // namespace
 
 SequenceSolution SolveSeedMethod(const SequenceProblem& p, const SeedMethodOptions& o) {
-  detail::AssertWellFormed(p);
+  // Its caps end it; nothing proves the answer optimal.
+  SequenceSolution s = detail::BeginSolution(p, "seed", SolveStatus::kRoundCap);
   const auto t0 = std::chrono::steady_clock::now();
-  SequenceSolution s;
-  s.solver = "seed";
   if (p.courses > 0) {
     SeedGraph g(p);
     const int seed = PickSeed(g, p, s.iterations);

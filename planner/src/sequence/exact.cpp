@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <limits>
 
-#include "sequence_detail.h"
-#include "stitchsim/planner/sequence_solver.h"
+#include "detail.h"
+#include "stitchsim/planner/sequence/solver.h"
 
 namespace stitchsim::planner {
 
@@ -35,11 +35,9 @@ std::vector<double> NodeCosts(const SequenceProblem& p) {
 }  // namespace
 
 std::optional<SequenceSolution> SolveExact(const SequenceProblem& p) {
-  detail::AssertWellFormed(p);
+  SequenceSolution s = detail::BeginSolution(p, "exact", SolveStatus::kOptimal);
   if (p.courses > kMaxExactCourses) return std::nullopt;
   const auto t0 = std::chrono::steady_clock::now();
-  SequenceSolution s;
-  s.solver = "exact";
   const int n = p.courses;
   const int m = 2 * n;
   const int dir_step = p.bidirectional ? 1 : 2;  // unidirectional: even nodes only

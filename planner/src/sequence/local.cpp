@@ -5,7 +5,7 @@
 // Construction. From p.start, repeatedly the cheapest move to an unvisited visit (each course
 // forwards, and backwards when bidirectional); ties by course, then forwards first.
 //
-// Moves (Tour, sequence_tour.h, prices each exactly in O(1) from prefix sums of the tour's
+// Moves (Tour, tour.h, prices each exactly in O(1) from prefix sums of the tour's
 // forward cost and of its backwards traversal; costs are not symmetric):
 // - Or-opt: a chain of 1..3 courses moved elsewhere, as it was or, when bidirectional, laid
 //   backwards (order reversed, every course flipped).
@@ -56,9 +56,9 @@
 #include <limits>
 #include <random>
 
-#include "sequence_detail.h"
-#include "sequence_tour.h"
-#include "stitchsim/planner/sequence_solver.h"
+#include "detail.h"
+#include "stitchsim/planner/sequence/solver.h"
+#include "tour.h"
 
 namespace stitchsim::planner {
 
@@ -320,10 +320,8 @@ TourMove RandomKick(const Tour& tour, std::mt19937_64& rng, int max_stretch, boo
 }  // namespace
 
 SequenceSolution SolveLocalSearch(const SequenceProblem& p, const LocalSearchOptions& o) {
-  detail::AssertWellFormed(p);
+  SequenceSolution s = detail::BeginSolution(p, "local", SolveStatus::kRoundCap);
   const auto t0 = std::chrono::steady_clock::now();
-  SequenceSolution s;
-  s.solver = "local";
   const int n = p.courses;
   Tour tour(p, NearestNeighbourTour(p));
   const double eps = 1e-12 * (1.0 + tour.Cost());
@@ -336,7 +334,10 @@ SequenceSolution SolveLocalSearch(const SequenceProblem& p, const LocalSearchOpt
   std::vector<Visit> best = tour.Order(), saved;
   double best_cost = tour.Cost();
   for (int round = 0; n >= 3 && round < o.max_rounds; ++round) {
-    if (o.time_limit_s > 0 && detail::SecondsSince(t0) >= o.time_limit_s) break;
+    if (o.time_limit_s > 0 && detail::SecondsSince(t0) >= o.time_limit_s) {
+      s.status = SolveStatus::kTimeLimit;
+      break;
+    }
     ++s.iterations;
     saved = tour.Order();
     const double saved_cost = tour.Cost();

@@ -1,12 +1,12 @@
 #pragma once
-// Private helpers shared by the sequence solvers (sequence_*.cpp): where a visit starts and
-// ends, the cost of one move between two visits.
+// Private helpers shared by the sequence solvers (the files of this folder): where a visit starts
+// and ends, the cost of one move between two visits.
 #include <cassert>
 #include <chrono>
 #include <limits>
 #include <vector>
 
-#include "stitchsim/planner/sequence_solver.h"
+#include "stitchsim/planner/sequence/solver.h"
 
 namespace stitchsim::planner::detail {
 
@@ -51,6 +51,17 @@ inline void AssertWellFormed(const SequenceProblem& p) {
 }
 
 /// Seconds since t0 on the steady clock.
+/// A solver's answer begun: the problem checked, the solver named, and how it stops unless
+/// it says otherwise.
+inline SequenceSolution BeginSolution(const SequenceProblem& p, const char* solver,
+                                      SolveStatus status) {
+  AssertWellFormed(p);
+  SequenceSolution s;
+  s.solver = solver;
+  s.status = status;
+  return s;
+}
+
 inline double SecondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }

@@ -1,10 +1,10 @@
-// Tow footprints of a programme's courses and their overlap (sequence_precedence.h).
+// Tow footprints of a programme's courses and their overlap (sequence/precedence.h).
 #include <algorithm>
 #include <array>
 #include <cmath>
 
-#include "sequence_grid.h"
-#include "stitchsim/planner/sequence_precedence.h"
+#include "grid.h"
+#include "stitchsim/planner/sequence/precedence.h"
 
 namespace stitchsim::planner {
 namespace {

@@ -1,12 +1,12 @@
 #pragma once
-// The working tour of the local search (sequence_local.cpp): an array of visits with
+// The working tour of the local search (local.cpp): an array of visits with
 // prefix sums of its forward cost and of the cost of traversing it backwards (every course
 // flipped), so that moving or reversing any stretch is priced exactly in O(1) even though
 // move costs are not symmetric.
 #include <vector>
 
-#include "sequence_detail.h"
-#include "stitchsim/planner/sequence_solver.h"
+#include "detail.h"
+#include "stitchsim/planner/sequence/solver.h"
 
 namespace stitchsim::planner::detail {
 

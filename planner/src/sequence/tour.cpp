@@ -1,5 +1,5 @@
 // The local search's tour: exact O(1) prices of stretch reversals and moves (see the header).
-#include "sequence_tour.h"
+#include "tour.h"
 
 #include <algorithm>
 #include <array>

@@ -5,10 +5,24 @@
 #include <limits>
 #include <utility>
 
-#include "sequence_detail.h"
-#include "stitchsim/planner/sequence_solver.h"
+#include "detail.h"
+#include "stitchsim/planner/sequence/solver.h"
 
 namespace stitchsim::planner {
+
+const char* ToString(SolveStatus status) {
+  switch (status) {
+    case SolveStatus::kOptimal:
+      return "optimal";
+    case SolveStatus::kRoundCap:
+      return "round-cap";
+    case SolveStatus::kTimeLimit:
+      return "time-limit";
+    case SolveStatus::kGiven:
+      return "given";
+  }
+  return "?";
+}
 
 double MoveCost(const SequenceProblem& p, const double* from, const double* to) {
   double acc = 0.0;

@@ -1,6 +1,6 @@
 #pragma once
 // A uniform grid over tow quads in a surface's (u, v), for the overlap queries of the
-// precedence network (sequence_precedence.cpp). Private to the planner.
+// precedence network (precedence.cpp). Private to the planner.
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "stitchsim/geom/surface.h"
-#include "stitchsim/planner/sequence_precedence.h"
+#include "stitchsim/planner/sequence/precedence.h"
 
 namespace stitchsim::planner::detail {
 

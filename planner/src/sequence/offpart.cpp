@@ -1,13 +1,14 @@
-// Off-part moves between lay-ups (sequence_offpart.h, docs/sequence.md).
-#include "stitchsim/planner/sequence_offpart.h"
+// Off-part moves between lay-ups (sequence/offpart.h, docs/sequence.md).
+#include "stitchsim/planner/sequence/offpart.h"
 
 #include <algorithm>
 #include <cmath>
 
+#include "stitchsim/common/units.h"
+
 namespace stitchsim::planner {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 using program::Motion;
 using program::OffPartBlock;
 

@@ -1,36 +1,48 @@
-// Course ends as machine axes and tool points (sequence_costs.h).
-#include "sequence_costs.h"
-
-#include <cmath>
+// Course ends as machine axes and tool points, and the costs of moves and lay-ups
+// (sequence_costs.h).
+#include "stitchsim/run/sequence_costs.h"
 
 #include "stitchsim/common/units.h"
 #include "stitchsim/sim/kinematics.h"
 
-namespace stitchsim::app {
+namespace stitchsim::run {
 namespace {
 
 // A backward end the cell cannot reach sits this far away in every coordinate.
 constexpr double kUnreachableCoord = 1e7;
 
-EndPoint Solve(const sim::CellSetup& cell, const Eigen::Isometry3d& pose,
-               const program::LayupEntry* entry, const trace::JointVector* previous,
-               trace::JointVector* joints = nullptr) {
-  EndPoint e;
+// The cell's IK at a lay-up pose: the rail as the lay-up's E says (or the cell's policy), the
+// rotator at its W (0 without an entry).
+sim::ToolPoseSolution SolveLayupPose(const sim::CellSetup& cell, const Eigen::Isometry3d& pose,
+                                     const program::LayupEntry* entry,
+                                     const trace::JointVector* previous) {
   const double rotator_rad =
       (entry != nullptr && entry->rotator_deg) ? *entry->rotator_deg / kRadToDeg : 0.0;
   const std::optional<double> rail = entry != nullptr ? entry->rail_mm : std::nullopt;
-  const sim::ToolPoseSolution s = sim::SolveToolPose(cell, pose, rotator_rad, rail, previous);
+  return sim::SolveToolPose(cell, pose, rotator_rad, rail, previous);
+}
+
+EndPoint SolveEnd(const sim::CellSetup& cell, const Eigen::Isometry3d& pose,
+                  const program::LayupEntry* entry, const trace::JointVector* previous,
+                  trace::JointVector* joints = nullptr) {
+  EndPoint e;
+  const sim::ToolPoseSolution s = SolveLayupPose(cell, pose, entry, previous);
   e.tool = pose.translation();
   e.ok = trace::IkUsable(s.ik.status);
   if (!e.ok)
     e.reason = s.ik.reason.empty() ? std::string(trace::ToString(s.ik.status)) : s.ik.reason;
   if (joints != nullptr) *joints = s.ik.joints;
-  e.axes.resize(trace::kNumJoints);
-  for (int j = 0; j < trace::kNumJoints; ++j) {
-    const double q = s.ik.joints[j];
-    e.axes[static_cast<std::size_t>(j)] = j == trace::kRailX ? q * 1000.0 : q * kRadToDeg;
-  }
+  e.axes = AxesOf(s.ik.joints);
   return e;
+}
+
+// A problem with no points: what MoveCost needs of a measure.
+planner::SequenceProblem CostOnly(const MeasureSpec& spec) {
+  planner::SequenceProblem p;
+  p.dim = static_cast<int>(spec.weights.size());
+  p.weights = spec.weights;
+  p.norm = spec.norm;
+  return p;
 }
 
 }  // namespace
@@ -59,11 +71,18 @@ const char* MeasureUnit(Measure m) {
   return "";
 }
 
+std::vector<double> AxesOf(const trace::JointVector& q) {
+  std::vector<double> axes(trace::kNumJoints);
+  for (int j = 0; j < trace::kNumJoints; ++j)
+    axes[static_cast<std::size_t>(j)] = j == trace::kRailX ? q[j] * 1000.0 : q[j] * kRadToDeg;
+  return axes;
+}
+
 CourseEnds SolveCourseEnds(const sim::CellSetup& cell, const program::AfpProgram& program,
                            const Eigen::Isometry3d& home) {
   CourseEnds out;
   const trace::JointVector home_q = sim::HomeJoints(*cell.robot, 0.0);
-  out.home = Solve(cell, home, nullptr, &home_q);
+  out.home = SolveEnd(cell, home, nullptr, &home_q);
   out.ends.reserve(program.courses.size() * 4);
   out.reversible.reserve(program.courses.size());
   for (const auto& c : program.courses) {
@@ -71,8 +90,8 @@ CourseEnds SolveCourseEnds(const sim::CellSetup& cell, const program::AfpProgram
       const Eigen::Isometry3d a = program::LayupStartPose(c, rev);
       const Eigen::Isometry3d b = program::LayupEndPose(c, rev);
       trace::JointVector qa;
-      EndPoint ea = Solve(cell, a, &c.entry, &home_q, &qa);
-      EndPoint eb = Solve(cell, b, &c.entry, &qa);
+      EndPoint ea = SolveEnd(cell, a, &c.entry, &home_q, &qa);
+      EndPoint eb = SolveEnd(cell, b, &c.entry, &qa);
       out.ends.push_back(std::move(ea));
       out.ends.push_back(std::move(eb));
     }
@@ -115,11 +134,8 @@ std::vector<double> PointOf(const EndPoint& e, Measure m) {
 planner::SequenceProblem SetProblem(const CourseEnds& ends, const std::vector<int>& courses,
                                     const MeasureSpec& spec, Measure m, bool bidirectional,
                                     const EndPoint& start, const EndPoint* finish) {
-  planner::SequenceProblem p;
+  planner::SequenceProblem p = CostOnly(spec);
   p.courses = static_cast<int>(courses.size());
-  p.dim = static_cast<int>(spec.weights.size());
-  p.weights = spec.weights;
-  p.norm = spec.norm;
   p.bidirectional = bidirectional;
   p.points.reserve(courses.size() * 4 * static_cast<std::size_t>(p.dim));
   for (const int c : courses) {
@@ -134,4 +150,47 @@ planner::SequenceProblem SetProblem(const CourseEnds& ends, const std::vector<in
   return p;
 }
 
-}  // namespace stitchsim::app
+std::vector<double> MoveCosts(const CourseEnds& ends,
+                              const std::vector<program::CourseVisit>& visits,
+                              const MeasureSpec& spec, Measure m, bool finish) {
+  const planner::SequenceProblem p = CostOnly(spec);
+  std::vector<double> out;
+  std::vector<double> here = PointOf(ends.home, m);
+  for (const auto& v : visits) {
+    const std::size_t k = 4 * static_cast<std::size_t>(v.course) + (v.reversed ? 2 : 0);
+    const std::vector<double> start = PointOf(ends.ends[k], m);
+    out.push_back(planner::MoveCost(p, here.data(), start.data()));
+    here = PointOf(ends.ends[k + 1], m);
+  }
+  if (finish) {
+    const std::vector<double> home = PointOf(ends.home, m);
+    out.push_back(planner::MoveCost(p, here.data(), home.data()));
+  }
+  return out;
+}
+
+Costs LayupCosts(const sim::CellSetup& cell, const program::AfpProgram& program,
+                 const MeasureSpec& axes_spec) {
+  Costs c{};
+  const planner::SequenceProblem p = CostOnly(axes_spec);
+  trace::JointVector q = sim::HomeJoints(*cell.robot, 0.0);
+  for (const auto& course : program.courses) {
+    c[2] += course.layup_length_mm;
+    std::vector<double> prev;
+    for (std::size_t i = 0; i < course.stations.size(); ++i) {
+      const auto& st = course.stations[i];
+      if (i + 1 < course.stations.size() && st.feed_mm_per_min > 0.0) {
+        const double len =
+            (course.stations[i + 1].pose.translation() - st.pose.translation()).norm();
+        c[1] += len / st.feed_mm_per_min * 60.0;
+      }
+      q = SolveLayupPose(cell, st.pose, &course.entry, &q).ik.joints;
+      std::vector<double> pt = AxesOf(q);
+      if (!prev.empty()) c[0] += planner::MoveCost(p, prev.data(), pt.data());
+      prev = std::move(pt);
+    }
+  }
+  return c;
+}
+
+}  // namespace stitchsim::run
