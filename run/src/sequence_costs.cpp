@@ -22,9 +22,9 @@ sim::ToolPoseSolution SolveLayupPose(const sim::CellSetup& cell, const Eigen::Is
   return sim::SolveToolPose(cell, pose, rotator_rad, rail, previous);
 }
 
-EndPoint SolveEnd(const sim::CellSetup& cell, const Eigen::Isometry3d& pose,
-                  const program::LayupEntry* entry, const trace::JointVector* previous,
-                  trace::JointVector* joints = nullptr) {
+EndPoint SolveCourseEnd(const sim::CellSetup& cell, const Eigen::Isometry3d& pose,
+                        const program::LayupEntry* entry, const trace::JointVector* previous,
+                        trace::JointVector* joints = nullptr) {
   EndPoint e;
   const sim::ToolPoseSolution s = SolveLayupPose(cell, pose, entry, previous);
   e.tool = pose.translation();
@@ -37,7 +37,7 @@ EndPoint SolveEnd(const sim::CellSetup& cell, const Eigen::Isometry3d& pose,
 }
 
 // A problem with no points: what MoveCost needs of a measure.
-planner::SequenceProblem CostOnly(const MeasureSpec& spec) {
+planner::SequenceProblem MeasureOnlyProblem(const MeasureSpec& spec) {
   planner::SequenceProblem p;
   p.dim = static_cast<int>(spec.weights.size());
   p.weights = spec.weights;
@@ -82,7 +82,7 @@ CourseEnds SolveCourseEnds(const sim::CellSetup& cell, const program::AfpProgram
                            const Eigen::Isometry3d& home) {
   CourseEnds out;
   const trace::JointVector home_q = sim::HomeJoints(*cell.robot, 0.0);
-  out.home = SolveEnd(cell, home, nullptr, &home_q);
+  out.home = SolveCourseEnd(cell, home, nullptr, &home_q);
   out.ends.reserve(program.courses.size() * 4);
   out.reversible.reserve(program.courses.size());
   for (const auto& c : program.courses) {
@@ -90,8 +90,8 @@ CourseEnds SolveCourseEnds(const sim::CellSetup& cell, const program::AfpProgram
       const Eigen::Isometry3d a = program::LayupStartPose(c, rev);
       const Eigen::Isometry3d b = program::LayupEndPose(c, rev);
       trace::JointVector qa;
-      EndPoint ea = SolveEnd(cell, a, &c.entry, &home_q, &qa);
-      EndPoint eb = SolveEnd(cell, b, &c.entry, &qa);
+      EndPoint ea = SolveCourseEnd(cell, a, &c.entry, &home_q, &qa);
+      EndPoint eb = SolveCourseEnd(cell, b, &c.entry, &qa);
       out.ends.push_back(std::move(ea));
       out.ends.push_back(std::move(eb));
     }
@@ -134,7 +134,7 @@ std::vector<double> PointOf(const EndPoint& e, Measure m) {
 planner::SequenceProblem SetProblem(const CourseEnds& ends, const std::vector<int>& courses,
                                     const MeasureSpec& spec, Measure m, bool bidirectional,
                                     const EndPoint& start, const EndPoint* finish) {
-  planner::SequenceProblem p = CostOnly(spec);
+  planner::SequenceProblem p = MeasureOnlyProblem(spec);
   p.courses = static_cast<int>(courses.size());
   p.bidirectional = bidirectional;
   p.points.reserve(courses.size() * 4 * static_cast<std::size_t>(p.dim));
@@ -153,7 +153,7 @@ planner::SequenceProblem SetProblem(const CourseEnds& ends, const std::vector<in
 std::vector<double> MoveCosts(const CourseEnds& ends,
                               const std::vector<program::CourseVisit>& visits,
                               const MeasureSpec& spec, Measure m, bool finish) {
-  const planner::SequenceProblem p = CostOnly(spec);
+  const planner::SequenceProblem p = MeasureOnlyProblem(spec);
   std::vector<double> out;
   std::vector<double> here = PointOf(ends.home, m);
   for (const auto& v : visits) {
@@ -172,7 +172,7 @@ std::vector<double> MoveCosts(const CourseEnds& ends,
 Costs LayupCosts(const sim::CellSetup& cell, const program::AfpProgram& program,
                  const MeasureSpec& axes_spec) {
   Costs c{};
-  const planner::SequenceProblem p = CostOnly(axes_spec);
+  const planner::SequenceProblem p = MeasureOnlyProblem(axes_spec);
   trace::JointVector q = sim::HomeJoints(*cell.robot, 0.0);
   for (const auto& course : program.courses) {
     c[2] += course.layup_length_mm;

@@ -17,7 +17,7 @@ json SequenceCostsJson(const Costs& c) {
 
 Costs SumOfCosts(const Costs& a, const Costs& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
 
-json SetJson(std::size_t k, const SetOutcome& s) {
+json SequenceSetJson(std::size_t k, const SetOutcome& s) {
   return json{
       {"set", k + 1},
       {"plies", s.plies},
@@ -35,7 +35,7 @@ json SetJson(std::size_t k, const SetOutcome& s) {
       {"offpart_after", SequenceCostsJson(s.offpart_after)}};
 }
 
-json TotalsJson(const SequenceOutcome& o) {
+json SequenceTotalsJson(const SequenceOutcome& o) {
   json totals;
   totals["offpart_before"] = SequenceCostsJson(o.offpart_before);
   totals["offpart_after"] = SequenceCostsJson(o.offpart_after);
@@ -87,9 +87,9 @@ void WriteSequenceJson(const SequenceOutcome& o, const program::AfpProgram& prog
   j["course_level"] = o.course_level;
   j["seconds"] = o.seconds;
   json sets = json::array();
-  for (std::size_t k = 0; k < o.sets.size(); ++k) sets.push_back(SetJson(k, o.sets[k]));
+  for (std::size_t k = 0; k < o.sets.size(); ++k) sets.push_back(SequenceSetJson(k, o.sets[k]));
   j["sets"] = sets;
-  j["totals"] = TotalsJson(o);
+  j["totals"] = SequenceTotalsJson(o);
   json order = json::array();
   for (const auto& v : o.after) {
     const auto& c = program.courses[static_cast<std::size_t>(v.course)];

@@ -114,6 +114,7 @@ TEST_F(SequenceRunTest, TheReportsOrderReadBackLaysTheSameProgramme) {
   ASSERT_EQ(laid.status, SequenceStatus::kOk);
   EXPECT_EQ(laid.outcome.solver, "given");
   EXPECT_EQ(laid.outcome.sets[0].solver, "given");
+  EXPECT_EQ(laid.outcome.sets[0].status, planner::SolveStatus::kGiven);
   EXPECT_EQ(laid.outcome.offpart_after, solved.outcome.offpart_after);
   const std::string a = Text([&](std::ostream& s) { WriteSequencedProgram(in, solved, s); });
   const std::string b = Text([&](std::ostream& s) { WriteSequencedProgram(in2, laid, s); });
@@ -149,6 +150,19 @@ TEST_F(SequenceRunTest, PrecedenceSetsAndAnOrderBreakingThem) {
   EXPECT_EQ(bad.status, SequenceStatus::kBadOrder);
   EXPECT_EQ(bad.error.code, "sequence-order-precedence");
   EXPECT_NE(bad.error.message.find("of ply 1"), std::string::npos) << bad.error.message;
+}
+
+// The local search cut by a tiny time limit says so per set; without a limit it ran its rounds.
+TEST_F(SequenceRunTest, EachSetSaysHowItsSolverStopped) {
+  SequenceOptions o = test::SeqPlateOptions(dir_path() / "pads.nc");
+  o.time_limit_s = 1e-9;
+  const SequenceInputs in = test::LoadOrFail(o);
+  const SequenceRun cut = RunSequence(in, o, nullptr);
+  ASSERT_EQ(cut.status, SequenceStatus::kOk);
+  ASSERT_GE(cut.outcome.sets[0].courses.size(), 3u);  // fewer: no rounds to cut
+  EXPECT_EQ(cut.outcome.sets[0].status, planner::SolveStatus::kTimeLimit);
+  o.time_limit_s = 0;
+  EXPECT_EQ(RunSequence(in, o, nullptr).outcome.sets[0].status, planner::SolveStatus::kRoundCap);
 }
 
 TEST_F(SequenceRunTest, BadInputsAreDiagnosticsOrErrors) {

@@ -27,15 +27,15 @@ struct SequenceOptions {
   std::string scene_file;         ///< its scene: surface, plies, AFP head
   std::string output_file;        ///< where the caller writes the programme (named in the report)
   scene::LoadOptions scene_load;  ///< how the scene's paths resolve
-  Measure measure = Measure::kAxes;
-  SequenceSolver solver = SequenceSolver::kLocal;
-  bool bidirectional = false;  ///< courses may be laid backwards
-  bool return_home = false;    ///< back to home after the last course
+  Measure measure = Measure::kAxes;                ///< the cost minimised (--cost)
+  SequenceSolver solver = SequenceSolver::kLocal;  ///< exact: sets over 16 courses use local
+  bool bidirectional = false;                      ///< courses may be laid backwards
+  bool return_home = false;                        ///< back to home after the last course
   bool course_level = false;   ///< course-level precedence (a course may move to an earlier set)
   bool measure_gap = false;    ///< also solve sets of up to 16 courses exactly (the optimum)
   double time_limit_s = 10.0;  ///< the local search's limit per set, s (0: none)
-  std::string home;            ///< "X,Y,Z,A,B,C" (mm, deg); empty: the programme's first pose
-  std::string order_file;      ///< a report's "order" to lay instead of solving; empty: solve
+  std::string home;  ///< "X,Y,Z,A,B,C", part frame (mm, deg); empty: the programme's first pose
+  std::string order_file;  ///< a report's "order" to lay instead of solving; empty: solve
 };
 
 /// A problem with no file position: the caller prints "error[code]: message".
@@ -50,7 +50,7 @@ struct SequenceInputs {
   program::AfpProgram program;  ///< the programme as read
   Eigen::Isometry3d home = Eigen::Isometry3d::Identity();  ///< part frame, mm
   std::vector<double> axis_weights;  ///< per joint, model order (head's sequence.axis_weights)
-  std::vector<program::CourseVisit> given_order;  ///< --order's courses; empty when solving
+  std::vector<program::CourseVisit> given_order;  ///< the order file's; empty without one
   double load_seconds = 0.0;  ///< wall time loading and checking took, s (counted in the run's)
 };
 
