@@ -13,12 +13,11 @@
 #include <random>
 
 #include "bench_support.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/planner/sequence_solver.h"
 
 namespace stitchsim::planner {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Axes: x, y, z (mm), three head angles (rad), rail (mm), rotator (rad). Laid backwards the
 // head is turned by pi and the lift-off differs, so moves are not symmetric.

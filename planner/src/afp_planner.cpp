@@ -16,7 +16,6 @@
 namespace stitchsim::planner {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // |q_x| below this counts as zero: the head axis lies in the y-z plane (seed eq. 12).
 constexpr double kZeroQx = 1e-12;
 

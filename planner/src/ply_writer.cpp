@@ -9,6 +9,7 @@
 #include <span>
 
 #include "detail/program_text.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/planner/ply_planner.h"
 #include "stitchsim/program/block.h"
 #include "stitchsim/program/writer.h"
@@ -50,7 +51,7 @@ class PlyWriter {
       header.entries = {{"scene", scene_.name},
                         {"head", scene_.head.name},
                         {"ply", plan_->ply_name},
-                        {"angle_deg", Num(plan_->angle_rad * 180.0 / 3.14159265358979323846)},
+                        {"angle_deg", Num(plan_->angle_rad * 180.0 / kPi)},
                         {"coverage_pct", Num(plan_->coverage * 100.0, "%.0f")},
                         {"courses", std::to_string(plan_->courses.size())},
                         {"tows", std::to_string(plan_->band.count)}};
@@ -74,8 +75,8 @@ class PlyWriter {
       b_.Clear();
       b_.m_codes = {d_.m.ply_start};
       b_.param = plan_->ply_index;
-      b_.comment = "PLY name=" + plan_->ply_name +
-                   " angle=" + Num(plan_->angle_rad * 180.0 / 3.14159265358979323846, "%g");
+      b_.comment =
+          "PLY name=" + plan_->ply_name + " angle=" + Num(plan_->angle_rad * 180.0 / kPi, "%g");
       w_.Write(b_);
       for (const PlyCourse& c : plan_->courses) WriteCourse(c);
     }

@@ -7,6 +7,7 @@
 
 #include "detail/program_text.h"
 #include "detail/raster_rows.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/planner/raster_planner.h"
 
 namespace stitchsim::planner {
@@ -101,9 +102,9 @@ class RasterWriter {
   // between the end orientations is never ambiguous.
   void QuarterTurnAt(const Eigen::Vector3d& p, const RasterTransit& t) {
     if (!t.quarter_turn) return;
-    Rapid(p, pose_words_.Rotation() * Eigen::AngleAxisd(0.5 * t.turn_sign * 3.14159265358979323846,
-                                                        Eigen::Vector3d::UnitZ())
-                                          .toRotationMatrix());
+    Rapid(p, pose_words_.Rotation() *
+                 Eigen::AngleAxisd(0.5 * t.turn_sign * kPi, Eigen::Vector3d::UnitZ())
+                     .toRotationMatrix());
   }
   // To the start `to` of a pass (tool frame `r`), the needles out.
   void Transit(const std::optional<RasterTransit>& t, const Eigen::Vector3d& to,

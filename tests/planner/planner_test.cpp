@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/program/modal_state.h"
@@ -363,8 +364,7 @@ TEST(Planner, CycleTimeShowsTheDecouplingPenalty) {
   const Written d = Plan(*s, s->paths.front(), Mode::kDecoupled);
   EXPECT_NEAR(c.summary.time.stitching_s, c.count * 60.0 / 300.0, 1e-9);
   EXPECT_GT(d.summary.time.Total(), c.summary.time.Total() * 1.5);
-  EXPECT_NEAR(d.summary.time.rotation_s,
-              2 * 3.14159265358979 / (30.0 * 3.14159265358979 / 180.0) + d.count * 0.15, 1e-6);
+  EXPECT_NEAR(d.summary.time.rotation_s, 2 * kPi / (30.0 * kDeg) + d.count * 0.15, 1e-6);
 }
 
 }  // namespace
