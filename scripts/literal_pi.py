@@ -41,9 +41,9 @@ def main():
                 if not name.endswith(EXTENSIONS) or rel == UNITS_H:
                     continue
                 with open(path, encoding="utf-8", errors="replace") as f:
-                    problems += [f"{rel}:{n}: {line}" for n, line in hits(f.read())]
-    for p in sorted(problems):
-        print(p)
+                    problems += [(rel, n, line) for n, line in hits(f.read())]
+    for rel, n, line in sorted(problems):
+        print(f"{rel}:{n}: {line}")
     if problems:
         print(f"literal_pi: {len(problems)} literal pi outside {UNITS_H}: use kPi, kDeg, "
               "kRadToDeg")
