@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "stitchsim/common/files.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/planner/afp_planner.h"
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/program/dialect.h"
@@ -81,7 +82,7 @@ Fixture& Get(const std::string& scene_name, const std::string& poses_from) {
     // The AFP course at normal pressure (--lay-angle 45 --incline 0): the feed module in
     // the mold on most poses (slab contacts, docs/collision.md "Depth").
     planner::AfpPlanOptions options;
-    options.lay_angle_rad = 45.0 * 3.14159265358979323846 / 180.0;
+    options.lay_angle_rad = 45.0 * kPi / 180.0;
     auto plan = planner::PlanAfpCourse(*source, nullptr, options, sink);
     if (!plan) Fail(sink);
     planner::WriteAfpProgram(*plan, *source, program::Dialect::Default(), text);

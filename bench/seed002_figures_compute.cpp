@@ -9,6 +9,7 @@
 
 #include "seed002_figures.h"
 #include "stitchsim/common/diagnostics.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/planner/laminate_family.h"
 #include "stitchsim/planner/offset_curves.h"
 #include "stitchsim/scene/scene.h"
@@ -19,9 +20,6 @@ namespace {
 using planner::FiberAxis;
 using planner::OffsetFamily;
 using planner::OffsetMethod;
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
 
 // The axis from `a` to `b`, projected along `v`, sampled to `tol_mm`; offset `count` times.
 struct Run {

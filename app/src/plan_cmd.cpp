@@ -17,6 +17,7 @@
 #include "plan_progress.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/planner/afp_planner.h"
+#include "stitchsim/planner/plan_status.h"
 #include "stitchsim/planner/raster_planner.h"
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/program/dialect.h"
@@ -43,10 +44,8 @@ std::unique_ptr<scene::Scene> LoadStitchingScene(const std::string& file) {
   DiagnosticSink sink;
   auto scene = scene::LoadScene(file, sink, SceneLoadOptions());
   if (PrintDiagnostics(sink) || !scene) return nullptr;
-  if (!scene->head.IsStitching()) {
-    PrintError("plan-wrong-head",
-               file + ": head '" + scene->head.name +
-                   "' does not stitch; use `stitchsim plan afp` for fiber placement");
+  if (const planner::PlanStatus s = planner::StitchingHeadStatus(*scene); !s.Ok()) {
+    PrintError(s.code, file + ": " + s.message);
     return nullptr;
   }
   return scene;
@@ -56,13 +55,9 @@ std::unique_ptr<scene::Scene> LoadStitchingScene(const std::string& file) {
 // with the names there are) and nullptr when there is none of that name.
 const scene::PathSpec* PathOrReport(const scene::Scene& scene, const std::string& file,
                                     const std::string& name) {
-  const scene::PathSpec* path = name.empty() ? &scene.paths.front() : scene.FindPath(name);
-  if (path == nullptr) {
-    std::string names;
-    for (const auto& p : scene.paths) names += (names.empty() ? "" : ", ") + p.name;
-    PrintError("plan-unknown-path", file + ": no path named '" + name + "' (paths: " + names + ")");
-  }
-  return path;
+  const planner::PathChoice choice = planner::ChoosePath(scene, name);
+  if (!choice.status.Ok()) PrintError(choice.status.code, file + ": " + choice.status.message);
+  return choice.path;
 }
 
 int RunPlanStitch(const PlanStitchArgs& a) {
@@ -101,9 +96,8 @@ int RunPlanStitch(const PlanStitchArgs& a) {
       "(stitching %.1f s, rotation and settle %.1f s) -> %s\n",
       scene->name.c_str(), path->name.c_str(), scene->head.name.c_str(),
       std::string(planner::ToString(s.mode)).c_str(), s.stitches, s.stitch_length_mm,
-      options.nominal_stitch_length_mm.value_or(scene->nominal_stitch_length_mm), s.path_length_mm,
-      s.decoupled, s.stitches - s.decoupled, s.motion_lines, s.time.Total(), s.time.stitching_s,
-      s.time.rotation_s, a.output.c_str());
+      s.nominal_stitch_length_mm, s.path_length_mm, s.decoupled, s.stitches - s.decoupled,
+      s.motion_lines, s.time.Total(), s.time.stitching_s, s.time.rotation_s, a.output.c_str());
   return kExitOk;
 }
 
@@ -282,7 +276,6 @@ int RunPlanRaster(const PlanRasterArgs& a) {
   DiagnosticSink sink;
   auto scene = LoadStitchingScene(a.scene);
   if (!scene) return kExitBadInput;
-  constexpr double kInch = 25.4;
   planner::RasterOptions o = planner::RasterOptionsFor(*scene);
   o.strategy = *planner::ParseRasterStrategy(a.strategy);
   if (a.pitch_mm) o.pitch_mm = *a.pitch_mm;
@@ -327,9 +320,9 @@ int RunPlanRaster(const PlanRasterArgs& a) {
       "%s: raster %s, pitch %.4f in, rows %.4f in apart: %ld stitches, %ld rows, %ld jumps, "
       "%ld regions, %ld user blocks; per head: %s; estimated time %.1f s (stitching %.1f s, "
       "traverse %.1f s) -> %s\n",
-      scene->name.c_str(), a.strategy.c_str(), o.pitch_mm / kInch, o.row_spacing_mm / kInch,
-      s->stitches, s->rows, s->jumps, s->bays, s->user_blocks, heads.c_str(), s->TotalS(),
-      s->stitching_s, s->traverse_s, a.output.c_str());
+      scene->name.c_str(), a.strategy.c_str(), o.pitch_mm / kMmPerInch,
+      o.row_spacing_mm / kMmPerInch, s->stitches, s->rows, s->jumps, s->bays, s->user_blocks,
+      heads.c_str(), s->TotalS(), s->stitching_s, s->traverse_s, a.output.c_str());
   return kExitOk;
 }
 

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <utility>
 
+#include "stitchsim/common/units.h"
+
 namespace stitchsim::geom {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Abbott and von Doenhoff, table of 5-digit mean lines for design lift 0.3, by P (1..5).
 struct FiveDigitRow {

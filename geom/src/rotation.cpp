@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "stitchsim/common/units.h"
+
 namespace stitchsim::geom {
 namespace {
 
@@ -10,7 +12,7 @@ Eigen::Matrix3d AxisRotation(int axis, double angle) {
 }
 
 double WrapNear(double angle, double reference) {
-  constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
+  constexpr double kTwoPi = 2.0 * kPi;
   return angle + kTwoPi * std::round((reference - angle) / kTwoPi);
 }
 
@@ -47,7 +49,6 @@ Eigen::Vector3d EulerFromRotation(EulerOrder order, const Eigen::Matrix3d& rotat
   Eigen::Vector3d sol1(e[2], e[1], e[0]);
   // The alternate solution of a Tait-Bryan / proper Euler triple.
   const bool proper = order.axes[0] == order.axes[2];
-  constexpr double kPi = 3.14159265358979323846;
   Eigen::Vector3d sol2 = proper ? Eigen::Vector3d(sol1[0] + kPi, -sol1[1], sol1[2] + kPi)
                                 : Eigen::Vector3d(sol1[0] + kPi, kPi - sol1[1], sol1[2] + kPi);
   auto normalise = [&](Eigen::Vector3d s) {

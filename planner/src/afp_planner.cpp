@@ -11,12 +11,12 @@
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/process/afp_tows.h"
 #include "stitchsim/program/block.h"
+#include "stitchsim/program/identity.h"
 #include "stitchsim/program/writer.h"
 
 namespace stitchsim::planner {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // |q_x| below this counts as zero: the head axis lies in the y-z plane (seed eq. 12).
 constexpr double kZeroQx = 1e-12;
 
@@ -340,16 +340,15 @@ void WriteAfpProgram(const AfpPlan& plan, const scene::Scene& scene,
                      const program::Dialect& dialect, std::ostream& out) {
   using program::Axis;
   program::ProgramWriter w(out, dialect);
-  program::ProgramHeader header;
-  header.entries = {{"scene", scene.name},
-                    {"head", scene.head.name},
-                    {"course", plan.course_name},
-                    {"incline_deg", Fixed(plan.incline_rad * kRadToDeg)},
-                    {"points", std::to_string(plan.points.size())},
-                    {"course_length_mm", Fixed(plan.length_mm)}};
-  if (std::isfinite(plan.lay_angle_rad))
-    header.entries.insert(header.entries.begin() + 3,
-                          {"lay_angle_deg", Fixed(plan.lay_angle_rad * kRadToDeg)});
+  program::ProgramIdentity id;
+  id.scene = scene.name;
+  id.head = scene.head.name;
+  id.course = plan.course_name;
+  if (std::isfinite(plan.lay_angle_rad)) id.lay_angle_deg = plan.lay_angle_rad * kRadToDeg;
+  id.incline_deg = plan.incline_rad * kRadToDeg;
+  id.points = static_cast<long>(plan.points.size());
+  id.course_length_mm = plan.length_mm;
+  const program::ProgramHeader header = program::WriteIdentity(id);
 
   program::Block b;
   detail::WriteOpening(w, b, dialect, header, scene.head.tool_number);

@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/planner/offset_curves.h"
 #include "stitchsim/planner/ply_planner.h"
 #include "stitchsim/process/afp_coverage.h"
@@ -42,8 +43,6 @@ SurfaceCurve Reversed(SurfaceCurve c);
 /// Gap and overlap between the left edge of `right` and the right edge of `left`, along the
 /// surface.
 CourseSeam MeasureSeam(const geom::Surface& surface, const PlyCourse& right, const PlyCourse& left);
-
-inline constexpr double kPiRad = 3.14159265358979323846;
 
 /// What a laminate family ply is built from.
 struct LaminateInputs {

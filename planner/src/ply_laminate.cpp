@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "ply_course.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/surface_walk.h"
 #include "stitchsim/planner/laminate_family.h"
 
@@ -58,8 +59,8 @@ SurfaceCurve FromCrossings(const geom::Surface& s, const std::vector<Eigen::Vect
 
 std::vector<SurfaceCurve> LaminateCourseLines(const LaminateInputs& in) {
   // The fibre line's angle to the 0 deg curves, in (0, pi): it heads to their left.
-  double theta = std::fmod(in.angle_rad, kPiRad);
-  if (theta <= 0.0) theta += kPiRad;
+  double theta = std::fmod(in.angle_rad, kPi);
+  if (theta <= 0.0) theta += kPi;
   // Start points a course width apart across the fibres: every `step` points of the
   // reference resampled at spacing / step (about 1 mm).
   const double spacing = in.course_width_mm / std::sin(theta);  // along the reference

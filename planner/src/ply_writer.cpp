@@ -9,8 +9,10 @@
 #include <span>
 
 #include "detail/program_text.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/planner/ply_planner.h"
 #include "stitchsim/program/block.h"
+#include "stitchsim/program/identity.h"
 #include "stitchsim/program/writer.h"
 
 namespace stitchsim::planner {
@@ -45,15 +47,15 @@ class PlyWriter {
       : plans_(plans), plan_(plans.front()), scene_(scene), d_(d), w_(out, d), pose_(d) {}
 
   void Write() {
-    program::ProgramHeader header;
+    program::ProgramIdentity id;
+    id.scene = scene_.name;
+    id.head = scene_.head.name;
+    id.tows = plan_->band.count;
     if (plans_.size() == 1) {
-      header.entries = {{"scene", scene_.name},
-                        {"head", scene_.head.name},
-                        {"ply", plan_->ply_name},
-                        {"angle_deg", Num(plan_->angle_rad * 180.0 / 3.14159265358979323846)},
-                        {"coverage_pct", Num(plan_->coverage * 100.0, "%.0f")},
-                        {"courses", std::to_string(plan_->courses.size())},
-                        {"tows", std::to_string(plan_->band.count)}};
+      id.ply = plan_->ply_name;
+      id.angle_deg = plan_->angle_rad * 180.0 / kPi;
+      id.coverage_pct = plan_->coverage * 100.0;
+      id.courses = static_cast<long>(plan_->courses.size());
     } else {
       // Several plies: names joined by commas, courses summed (each ply's own line says more).
       std::string names;
@@ -62,20 +64,17 @@ class PlyWriter {
         names += (names.empty() ? "" : ",") + p->ply_name;
         courses += p->courses.size();
       }
-      header.entries = {{"scene", scene_.name},
-                        {"head", scene_.head.name},
-                        {"plies", names},
-                        {"courses", std::to_string(courses)},
-                        {"tows", std::to_string(plan_->band.count)}};
+      id.plies = names;
+      id.courses = static_cast<long>(courses);
     }
-    detail::WriteOpening(w_, b_, d_, header, scene_.head.tool_number);
+    detail::WriteOpening(w_, b_, d_, program::WriteIdentity(id), scene_.head.tool_number);
     for (const PlyPlan* p : plans_) {
       plan_ = p;
       b_.Clear();
       b_.m_codes = {d_.m.ply_start};
       b_.param = plan_->ply_index;
-      b_.comment = "PLY name=" + plan_->ply_name +
-                   " angle=" + Num(plan_->angle_rad * 180.0 / 3.14159265358979323846, "%g");
+      b_.comment =
+          "PLY name=" + plan_->ply_name + " angle=" + Num(plan_->angle_rad * 180.0 / kPi, "%g");
       w_.Write(b_);
       for (const PlyCourse& c : plan_->courses) WriteCourse(c);
     }

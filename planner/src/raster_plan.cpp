@@ -8,6 +8,7 @@
 
 #include "detail/raster_rows.h"
 #include "stitchsim/common/limits.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/planner/raster_planner.h"
 
 namespace stitchsim::planner {
@@ -385,7 +386,7 @@ class PassBuilder {
       t.lift_mm =
           FlightLift(surface_, pos_, rotation_.col(2), to, r.col(2), plan_.flight_clearance_mm);
     }
-    t.quarter_turn = geom::AngleBetween(rotation_, r) > 0.5 * 3.14159265358979323846;
+    t.quarter_turn = geom::AngleBetween(rotation_, r) > 0.5 * kPi;
     t.turn_sign = -pass.direction;
     return t;
   }

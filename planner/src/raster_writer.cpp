@@ -7,7 +7,9 @@
 
 #include "detail/program_text.h"
 #include "detail/raster_rows.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/planner/raster_planner.h"
+#include "stitchsim/program/identity.h"
 
 namespace stitchsim::planner {
 namespace {
@@ -37,15 +39,15 @@ class RasterWriter {
   }
 
   RasterSummary Write() {
-    program::ProgramHeader header;
-    header.entries = {{"scene", scene_.name},
-                      {"head", scene_.head.name},
-                      {"raster", std::string(ToString(plan_.strategy))},
-                      {"stitch_length_mm", Num(plan_.pitch_mm)},
-                      {"row_spacing_mm", Num(plan_.row_spacing_mm)},
-                      {"heads", std::to_string(plan_.heads)},
-                      {"stitches", std::to_string(plan_.stitches)}};
-    detail::WriteOpening(w_, b_, dialect_, header, scene_.head.tool_number);
+    program::ProgramIdentity id;
+    id.scene = scene_.name;
+    id.head = scene_.head.name;
+    id.raster = std::string(ToString(plan_.strategy));
+    id.stitch_length_mm = plan_.pitch_mm;
+    id.row_spacing_mm = plan_.row_spacing_mm;
+    id.heads = plan_.heads;
+    id.stitches = plan_.stitches;
+    detail::WriteOpening(w_, b_, dialect_, program::WriteIdentity(id), scene_.head.tool_number);
     for (const RasterSection& section : plan_.sections) {
       if (plan_.head_sections) {
         StitchingOff();
@@ -101,9 +103,9 @@ class RasterWriter {
   // between the end orientations is never ambiguous.
   void QuarterTurnAt(const Eigen::Vector3d& p, const RasterTransit& t) {
     if (!t.quarter_turn) return;
-    Rapid(p, pose_words_.Rotation() * Eigen::AngleAxisd(0.5 * t.turn_sign * 3.14159265358979323846,
-                                                        Eigen::Vector3d::UnitZ())
-                                          .toRotationMatrix());
+    Rapid(p, pose_words_.Rotation() *
+                 Eigen::AngleAxisd(0.5 * t.turn_sign * kPi, Eigen::Vector3d::UnitZ())
+                     .toRotationMatrix());
   }
   // To the start `to` of a pass (tool frame `r`), the needles out.
   void Transit(const std::optional<RasterTransit>& t, const Eigen::Vector3d& to,

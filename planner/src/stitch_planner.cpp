@@ -1,14 +1,9 @@
 #include "stitchsim/planner/stitch_planner.h"
 
 #include <cmath>
-#include <ostream>
 
-#include "detail/program_text.h"
 #include "stitchsim/common/limits.h"
-#include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
-#include "stitchsim/program/block.h"
-#include "stitchsim/program/writer.h"
 
 namespace stitchsim::planner {
 
@@ -65,6 +60,7 @@ std::optional<StitchPathPlanner> StitchPathPlanner::Create(const scene::Scene& s
   p.progress_ = options.progress;
   p.count_ = *n;
   p.stitch_length_mm_ = p.path_.Length() / *n;
+  p.nominal_stitch_length_mm_ = nominal;
   p.process_ = process::MakeProcessModel(scene, p.stitch_length_mm_);
   p.limits_ = process::NeedleLimitsFrom(scene.limits);
   p.current_ = p.path_.AtArcLength(0.0);
@@ -174,96 +170,6 @@ std::vector<PlannedStitch> CollectStitches(StitchPathPlanner& planner) {
   PlannedStitch s;
   while (planner.Next(s)) out.push_back(s);
   return out;
-}
-
-ProgramSummary WriteStitchProgram(StitchPathPlanner& planner, const scene::Scene& scene,
-                                  const std::string& path_name, const program::Dialect& dialect,
-                                  std::ostream& out) {
-  using program::Axis;
-  const auto& st = scene.head.stitch;
-  const double l = planner.StitchLengthMm();
-  const double feed_mm_min = st.stitch_rate_per_min * l;
-  const double stitch_time_s = 60.0 / st.stitch_rate_per_min;
-  const double rot_speed_rad_s = st.rotation_speed_deg_s / kRadToDeg;
-
-  ProgramSummary summary;
-  summary.mode = planner.GetMode();
-  summary.stitch_length_mm = l;
-  summary.path_length_mm = planner.PathLengthMm();
-
-  program::ProgramWriter w(out, dialect);
-  program::ProgramHeader header;
-  auto num = [](double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof(buf), "%.6f", v);
-    return std::string(buf);
-  };
-  header.entries = {
-      {"scene", scene.name},        {"head", scene.head.name},
-      {"path", path_name},          {"mode", std::string(ToString(planner.GetMode()))},
-      {"stitch_length_mm", num(l)}, {"stitches", std::to_string(planner.StitchCount())}};
-  program::Block b;
-  detail::PoseWords pose_words(dialect);
-  detail::WriteOpening(w, b, dialect, header, scene.head.tool_number);
-  // Start line: the first stitch's pose, both cumulative axes at zero.
-  b.Clear();
-  b.motion = program::Motion::kRapid;
-  pose_words.Set(b, planner.StartPose());
-  b[Axis::kDrive] = 0.0;
-  b[Axis::kPathLength] = 0.0;
-  b.comment = "start";
-  w.Write(b);
-  ++summary.motion_lines;
-  b.Clear();
-  b.m_codes = {dialect.m.stitch_on};
-  w.Write(b);
-
-  PlannedStitch s;
-  bool feed_written = false;
-  while (planner.Next(s)) {
-    ++summary.stitches;
-    const double uv = s.index * l;
-    if (s.decoupled) {
-      ++summary.decoupled;
-      // Line 1: pure translation to the stitch end, orientation kept; the whole stitch
-      // cycle happens here.
-      b.Clear();
-      b.motion = program::Motion::kFeed;
-      Eigen::Isometry3d translate = s.start;
-      translate.translation() = s.end.translation();
-      pose_words.Set(b, translate);
-      b[Axis::kDrive] = uv;
-      b[Axis::kPathLength] = uv;
-      if (!feed_written) b.feed = feed_mm_min;
-      feed_written = true;
-      w.Write(b);
-      // Line 2: pure rotation to the next stitch's frame, drive unchanged (needles out).
-      b.Clear();
-      pose_words.Set(b, s.end);
-      b[Axis::kDrive] = uv;
-      b[Axis::kPathLength] = uv;
-      w.Write(b);
-      summary.motion_lines += 2;
-      summary.time.stitching_s += stitch_time_s;
-      summary.time.rotation_s += s.rotation_rad / rot_speed_rad_s + st.settle_time_s;
-    } else {
-      b.Clear();
-      b.motion = program::Motion::kFeed;
-      pose_words.Set(b, s.end);
-      b[Axis::kDrive] = uv;
-      b[Axis::kPathLength] = uv;
-      if (!feed_written) b.feed = feed_mm_min;
-      feed_written = true;
-      w.Write(b);
-      ++summary.motion_lines;
-      summary.time.stitching_s += std::max(stitch_time_s, s.rotation_rad / rot_speed_rad_s);
-    }
-  }
-  b.Clear();
-  b.m_codes = {dialect.m.stitch_off};
-  w.Write(b);
-  detail::WriteEnding(w, b, dialect);
-  return summary;
 }
 
 }  // namespace stitchsim::planner

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <ostream>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/afp_program.h"
 #include "stitchsim/program/tool_pose.h"
@@ -10,8 +11,6 @@
 
 namespace stitchsim::program {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Eigen::Isometry3d TurnedRound(const Eigen::Isometry3d& pose) {
   Eigen::Isometry3d r = pose;

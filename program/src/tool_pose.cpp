@@ -1,11 +1,12 @@
 #include "stitchsim/program/tool_pose.h"
 
+#include "stitchsim/common/units.h"
+
 namespace stitchsim::program {
 namespace {
 
 // Degrees to radians as a multiplication by pi/180 (not deg * pi / 180): the executor's
 // traces and reports were made with this rounding.
-constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
 
 }  // namespace
 
@@ -20,7 +21,7 @@ std::optional<Eigen::Isometry3d> ToolPoseOf(const MachineState& state, geom::Eul
   Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
   tool.translation() = Eigen::Vector3d(*state[Axis::kX], *state[Axis::kY], *state[Axis::kZ]);
   tool.linear() = geom::RotationFromEuler(
-      order, Eigen::Vector3d(*state[Axis::kA], *state[Axis::kB], *state[Axis::kC]) * kRadPerDeg);
+      order, Eigen::Vector3d(*state[Axis::kA], *state[Axis::kB], *state[Axis::kC]) * kDeg);
   return tool;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/render/scene_model.h"
 
 namespace stitchsim::render {
@@ -245,15 +246,13 @@ CameraView LookAlong(const Eigen::Vector3d& lookat_m, const Eigen::Vector3d& for
   CameraView v;
   v.lookat_m = lookat_m;
   v.distance_m = distance_m;
-  constexpr double kDeg = 180.0 / 3.14159265358979323846;
-  v.azimuth_deg = std::atan2(f.y(), f.x()) * kDeg;
-  v.elevation_deg = std::clamp(std::asin(std::clamp(f.z(), -1.0, 1.0)) * kDeg, -89.0, 89.0);
+  v.azimuth_deg = std::atan2(f.y(), f.x()) * kRadToDeg;
+  v.elevation_deg = std::clamp(std::asin(std::clamp(f.z(), -1.0, 1.0)) * kRadToDeg, -89.0, 89.0);
   return v;
 }
 
 Eigen::Vector3d ViewDirection(const CameraView& view) {
-  constexpr double kRad = 3.14159265358979323846 / 180.0;
-  const double az = view.azimuth_deg * kRad, el = view.elevation_deg * kRad;
+  const double az = view.azimuth_deg * kDeg, el = view.elevation_deg * kDeg;
   return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
 }
 

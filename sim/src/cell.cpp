@@ -3,12 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/sim/collision.h"
 
 namespace stitchsim::sim {
 namespace {
 
-constexpr double kHalfPi = 1.5707963267948966;
+constexpr double kHalfPi = kPi / 2;
 
 Eigen::Isometry3d MmToM(const Eigen::Isometry3d& pose_mm) {
   Eigen::Isometry3d out = pose_mm;
@@ -28,7 +29,7 @@ CellSetup MakeCellSetup(const RobotModel& robot, const scene::Scene& scene) {
   cell.ik.reference = HomeJoints(robot, 0.0);
   if (cell.mount == scene::Mount::kTable) cell.fixed_part_world_m = PartPoseWorld(cell, 0.0);
   cell.ik.wrist_singularity_rad =
-      scene.limits.Value(scene::LimitKey::kSingularityA5MinDeg) * 3.14159265358979323846 / 180.0;
+      scene.limits.Value(scene::LimitKey::kSingularityA5MinDeg) * kPi / 180.0;
   return cell;
 }
 

@@ -1,5 +1,6 @@
 #include "stitchsim/sim/dynamics.h"
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
 
 namespace stitchsim::sim {
@@ -39,8 +40,8 @@ void DynamicsSink::OnSample(const TraceSample& sample) {
   s.tool_part = sample.tool_part * lag;
   s.tracked = true;
   s.tracking_error_mm = lag.translation().norm();
-  s.tracking_error_deg = geom::AngleBetween(Eigen::Matrix3d::Identity(), lag.linear()) * 180.0 /
-                         3.14159265358979323846;
+  s.tracking_error_deg =
+      geom::AngleBetween(Eigen::Matrix3d::Identity(), lag.linear()) * 180.0 / kPi;
   ++figures_.samples;
   figures_.simulated_s = physics_.PhysicsTime();
   if (s.tracking_error_mm > figures_.max_error_mm) {

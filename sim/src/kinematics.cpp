@@ -11,7 +11,6 @@
 namespace stitchsim::sim {
 namespace {
 
-using detail::kPiD;
 using detail::kTwoPi;
 
 // Pose of a link relative to its parent at joint value q (m or rad).
@@ -30,7 +29,7 @@ Eigen::Isometry3d LocalPose(const RobotModel& model, const LinkInfo& link, const
 
 std::string Degrees(double rad) {
   char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3f", rad * 180.0 / kPiD);
+  std::snprintf(buffer, sizeof buffer, "%.3f", rad * 180.0 / kPi);
   return buffer;
 }
 

@@ -81,7 +81,7 @@ class StartBranchSearch {
   struct Track {
     ArmJointVector start, prev, lo, hi;
   };
-  static constexpr double kTwoPi = 2 * 3.14159265358979323846;
+  static constexpr double kTwoPi = 2 * kPi;
 
   // One track per analytic solution at the first pose.
   bool Start(const Eigen::Isometry3d& flange, double rail, double rot) {

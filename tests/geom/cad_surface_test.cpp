@@ -10,10 +10,10 @@
 #include <fstream>
 #include <random>
 
+#include "stitchsim/common/units.h"
+
 namespace stitchsim::geom {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A bilinear patch over [-100, 100] x [-50, 50] at z = 0, poles unevenly spaced along u.
 BSplineSpec FlatPatch() {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/curve.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/geom/stl.h"
@@ -16,8 +17,6 @@
 
 namespace stitchsim::geom {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 TEST(Rotation, DialectDefaultIsFixedXyz) {
   const Eigen::Vector3d abc(0.1, -0.2, 0.3);

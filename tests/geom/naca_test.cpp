@@ -10,12 +10,10 @@
 #include <string>
 
 #include "seed_wing.h"
+#include "stitchsim/common/units.h"
 
 namespace stitchsim::geom {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
 
 NacaSection Parse(const std::string& code) {
   std::string error;

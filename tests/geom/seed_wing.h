@@ -2,6 +2,7 @@
 // Seed 002's wing for the tests: root NACA 23014, chord 225.81 cm; tip NACA 23012, chord
 // 113.03 cm; span 731.01 cm; no sweep, dihedral or twist.
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/naca.h"
 
 namespace stitchsim::geom::testing {
@@ -18,7 +19,7 @@ inline WingSpec SeedWingSpec() {
 
 /// The seed's wing with the angles the paper leaves open set to values that test each term.
 inline WingSpec SweptTwistedSeedWingSpec() {
-  constexpr double deg = 3.14159265358979323846 / 180.0;
+  constexpr double deg = kDeg;
   WingSpec spec = SeedWingSpec();
   spec.sweep_rad = 12.0 * deg;
   spec.dihedral_rad = 4.0 * deg;

@@ -8,12 +8,11 @@
 #include <cmath>
 #include <string>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/surface.h"
 
 namespace stitchsim::geom {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double Angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));

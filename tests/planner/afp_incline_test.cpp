@@ -11,11 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "stitchsim/common/units.h"
+
 namespace stitchsim::planner {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 const fs::path kSource = STITCHSIM_SOURCE_DIR;
 
 std::unique_ptr<scene::Scene> AfpScene() {

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/planner/afp_planner.h"
 #include "stitchsim/program/modal_state.h"
@@ -16,8 +17,6 @@ namespace stitchsim::planner {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
 const fs::path kSource = STITCHSIM_SOURCE_DIR;
 
 std::unique_ptr<scene::Scene> LoadAfpScene() {

@@ -10,12 +10,10 @@
 #include <iostream>
 
 #include "offset_fixtures.h"
+#include "stitchsim/common/units.h"
 
 namespace stitchsim::planner {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180;
 
 // Clockwise arc of radius r about the origin from +30 to -30 deg, a point every ~1 mm: its
 // N x T points outwards, so its offsets are the circles r + k d.

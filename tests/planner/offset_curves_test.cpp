@@ -10,11 +10,10 @@
 #include <iostream>
 
 #include "offset_fixtures.h"
+#include "stitchsim/common/units.h"
 
 namespace stitchsim::planner {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A straight fiber axis along part x at height z = 50, projected straight down.
 FiberAxis AxisAlongX(double y, double x0, double x1) {

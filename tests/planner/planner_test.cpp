@@ -2,11 +2,15 @@
 // on the path, round trip, and the auto-mode decisions of seed 000's guidance.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <regex>
 #include <sstream>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
+#include "stitchsim/planner/plan_status.h"
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/program/modal_state.h"
 #include "stitchsim/program/reader.h"
@@ -363,8 +367,138 @@ TEST(Planner, CycleTimeShowsTheDecouplingPenalty) {
   const Written d = Plan(*s, s->paths.front(), Mode::kDecoupled);
   EXPECT_NEAR(c.summary.time.stitching_s, c.count * 60.0 / 300.0, 1e-9);
   EXPECT_GT(d.summary.time.Total(), c.summary.time.Total() * 1.5);
-  EXPECT_NEAR(d.summary.time.rotation_s,
-              2 * 3.14159265358979 / (30.0 * 3.14159265358979 / 180.0) + d.count * 0.15, 1e-6);
+  EXPECT_NEAR(d.summary.time.rotation_s, 2 * kPi / (30.0 * kDeg) + d.count * 0.15, 1e-6);
+}
+
+// WriteStitchProgram as three steps: the moves of each stitch, their time, their text; and
+// the checks plan stitch asks of a scene (its head, a path by name).
+
+StitchPathPlanner Planner(const scene::Scene& s, Mode mode, std::optional<double> length = {}) {
+  DiagnosticSink sink;
+  StitchPlanOptions o;
+  o.mode = mode;
+  o.nominal_stitch_length_mm = length;
+  auto p = StitchPathPlanner::Create(s, s.paths.front(), o, sink);
+  EXPECT_TRUE(p.has_value());
+  return std::move(*p);
+}
+
+TEST(StitchWriter, MovesOfADecoupledStitchTranslateFirstThenTurn) {
+  PlannedStitch s;
+  s.index = 3;
+  s.decoupled = true;
+  s.start = Eigen::Translation3d(1, 2, 3) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ());
+  s.end = Eigen::Translation3d(4, 5, 6) * Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ());
+  s.rotation_rad = 0.2;
+  const StitchMoves m = MovesOf(s, 2.5);
+  EXPECT_TRUE(m.decoupled);
+  EXPECT_EQ(m.Lines(), 2);
+  EXPECT_TRUE(m.translate.linear().isApprox(s.start.linear(), 0.0));
+  EXPECT_TRUE(m.translate.translation().isApprox(s.end.translation(), 0.0));
+  EXPECT_TRUE(m.end.isApprox(s.end, 0.0));
+  EXPECT_EQ(m.drive_mm, 7.5);
+  s.decoupled = false;
+  EXPECT_EQ(MovesOf(s, 2.5).Lines(), 1);
+}
+
+TEST(StitchWriter, TimeOfAStitchByHand) {
+  scene::StitchProcessSpec spec;
+  spec.stitch_rate_per_min = 300.0;  // 0.2 s a stitch
+  spec.rotation_speed_deg_s = 30.0;
+  spec.settle_time_s = 0.15;
+  const StitchTiming t = StitchTimingOf(spec);
+  StitchMoves m;
+  m.rotation_rad = 15.0 * kDeg;  // 0.5 s at 30 deg/s
+  CycleTime coupled;
+  AddStitchTime(m, t, coupled);
+  EXPECT_NEAR(coupled.stitching_s, 0.5, 1e-12);  // the turn is slower than the stitch
+  EXPECT_EQ(coupled.rotation_s, 0.0);
+  m.decoupled = true;
+  CycleTime decoupled;
+  AddStitchTime(m, t, decoupled);
+  EXPECT_NEAR(decoupled.stitching_s, 0.2, 1e-12);
+  EXPECT_NEAR(decoupled.rotation_s, 0.5 + 0.15, 1e-12);
+}
+
+// The summary of the written programme against the same stitches planned again and summed
+// here, for each mode; the motion lines against the text's lines with an axis word.
+TEST(StitchWriter, SummaryIsTheSumOverTheStitchesPlannedAgain) {
+  const auto s = Load("circle_8in");
+  ASSERT_NE(s, nullptr);
+  const StitchTiming timing = StitchTimingOf(s->head.stitch);
+  for (Mode mode : {Mode::kCoupled, Mode::kDecoupled, Mode::kAuto}) {
+    StitchPathPlanner writing = Planner(*s, mode);
+    std::ostringstream out;
+    const ProgramSummary sum =
+        WriteStitchProgram(writing, *s, s->paths.front().name, program::Dialect::Default(), out);
+    StitchPathPlanner again = Planner(*s, mode);
+    const std::vector<PlannedStitch> stitches = CollectStitches(again);
+    double stitching = 0, rotation = 0;
+    int decoupled = 0;
+    for (const PlannedStitch& p : stitches) {
+      const double turn_s = p.rotation_rad / (s->head.stitch.rotation_speed_deg_s * kDeg);
+      if (p.decoupled) {
+        ++decoupled;
+        stitching += timing.stitch_time_s;
+        rotation += turn_s + s->head.stitch.settle_time_s;
+      } else {
+        stitching += std::max(timing.stitch_time_s, turn_s);
+      }
+    }
+    EXPECT_EQ(sum.stitches, static_cast<int>(stitches.size()));
+    EXPECT_EQ(sum.decoupled, decoupled);
+    EXPECT_NEAR(sum.time.stitching_s, stitching, 1e-9);
+    EXPECT_NEAR(sum.time.rotation_s, rotation, 1e-9);
+    std::istringstream text(out.str());
+    long axis_lines = 0;
+    const std::regex axis_word(R"((^|\s)[XYZABCUV]-?[0-9.])");  // outside comments
+    for (std::string line; std::getline(text, line);) {
+      axis_lines += std::regex_search(line.substr(0, line.find('(')), axis_word);
+    }
+    EXPECT_EQ(sum.motion_lines, axis_lines);
+    EXPECT_EQ(sum.motion_lines, 1 + sum.stitches + sum.decoupled);
+    if (mode == Mode::kDecoupled) {
+      EXPECT_EQ(decoupled, sum.stitches);
+    }
+    if (mode == Mode::kCoupled) {
+      EXPECT_EQ(decoupled, 0);
+    }
+  }
+}
+
+TEST(StitchWriter, SummarySaysTheNominalLengthAskedFor) {
+  const auto s = Load("circle_8in");
+  ASSERT_NE(s, nullptr);
+  for (std::optional<double> asked : {std::optional<double>(), std::optional<double>(3.3)}) {
+    StitchPathPlanner p = Planner(*s, Mode::kCoupled, asked);
+    std::ostringstream out;
+    const ProgramSummary sum =
+        WriteStitchProgram(p, *s, s->paths.front().name, program::Dialect::Default(), out);
+    EXPECT_EQ(sum.nominal_stitch_length_mm, asked.value_or(s->nominal_stitch_length_mm));
+    EXPECT_EQ(sum.stitch_length_mm, sum.path_length_mm / sum.stitches);
+  }
+}
+
+TEST(PlanStatus, AStitchPlanNeedsAStitchingHeadAndAPathByName) {
+  const auto stitching = Load("circle_8in");
+  const auto afp = Load("afp_panel");
+  ASSERT_TRUE(stitching && afp);
+  EXPECT_TRUE(StitchingHeadStatus(*stitching).Ok());
+  const PlanStatus wrong = StitchingHeadStatus(*afp);
+  EXPECT_EQ(wrong.code, "plan-wrong-head");
+  EXPECT_EQ(wrong.message, "head '" + afp->head.name +
+                               "' does not stitch; use `stitchsim plan afp` for fiber placement");
+  const PathChoice first = ChoosePath(*stitching, "");
+  EXPECT_TRUE(first.status.Ok());
+  EXPECT_EQ(first.path, &stitching->paths.front());
+  const PathChoice named = ChoosePath(*stitching, stitching->paths.back().name);
+  EXPECT_EQ(named.path, &stitching->paths.back());
+  const PathChoice none = ChoosePath(*stitching, "nowhere");
+  EXPECT_EQ(none.path, nullptr);
+  EXPECT_EQ(none.status.code, "plan-unknown-path");
+  std::string names;
+  for (const auto& p : stitching->paths) names += (names.empty() ? "" : ", ") + p.name;
+  EXPECT_EQ(none.status.message, "no path named 'nowhere' (paths: " + names + ")");
 }
 
 }  // namespace

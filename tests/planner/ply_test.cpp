@@ -12,6 +12,7 @@
 #include <map>
 #include <sstream>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/cad_surface.h"
 #include "stitchsim/geom/polygon2.h"
 #include "stitchsim/geom/rotation.h"
@@ -26,7 +27,6 @@ namespace {
 
 namespace fs = std::filesystem;
 const fs::path kSource = STITCHSIM_SOURCE_DIR;
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 fs::path Folder(const std::string& name) {
   const fs::path d =

@@ -6,12 +6,11 @@
 #include <cmath>
 #include <filesystem>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/process/stitch_cycle.h"
 
 namespace stitchsim::process {
 namespace {
-
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 // The RS535 as the bundled head spec describes it: 17 mm stitches, needles in from 15 % to
 // 85 % of the cycle, 12 mm preform.

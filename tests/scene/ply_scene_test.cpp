@@ -6,6 +6,7 @@
 #include <string>
 
 #include "scene_test_support.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/scene/scene.h"
 
 namespace stitchsim::scene {
@@ -57,7 +58,7 @@ TEST(ScenePlies, ValuesAreRead) {
   const PlySpec& a = r.scene->plies[0];
   EXPECT_EQ(a.name, "skin_45");
   EXPECT_EQ(a.where.line, 19);
-  EXPECT_NEAR(a.angle_rad, 3.14159265358979323846 / 4, 1e-12);
+  EXPECT_NEAR(a.angle_rad, kPi / 4, 1e-12);
   EXPECT_EQ(a.origin_mm, Eigen::Vector3d(10, 20, 50));
   EXPECT_EQ(a.direction, Eigen::Vector3d(0, 1, 0));
   EXPECT_LT((a.projection - Eigen::Vector3d(0, 0, -1)).norm(), 1e-12);  // minus the normal

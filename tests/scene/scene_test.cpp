@@ -10,6 +10,7 @@
 
 #include "scene_test_support.h"
 #include "stitchsim/common/files.h"
+#include "stitchsim/common/units.h"
 
 namespace stitchsim::scene {
 namespace {
@@ -47,7 +48,7 @@ TEST(Scene, UnitsConvertToMillimetres) {
   const PathSpec* circle = scene->FindPath("circle");
   ASSERT_NE(circle, nullptr);
   geom::SurfacePath path(*scene->surface, *circle->curve);
-  EXPECT_NEAR(path.Length(), 2 * 3.14159265358979 * 8 * 25.4, 1e-6);
+  EXPECT_NEAR(path.Length(), 2 * kPi * 8 * 25.4, 1e-6);
   EXPECT_TRUE(path.Closed());
   EXPECT_NEAR(scene->mount_to_part_m.translation().z(), 2 * 0.0254, 1e-12);
 }
@@ -272,10 +273,11 @@ TEST(Scene, HeadSequenceBlockIsReadAndChecked) {
   struct Case {
     std::string good, bad, code;
   };
-  for (const Case& c : std::vector<Case>{{"    a3: 0.0142857", "    a3: -1", "head-out-of-range"},
-                                         {"    a3: 0.0142857", "    a3: fast", "head-bad-number"},
-                                         {"  retract_mm: 100", "  retract: 100", "head-unknown-key"},
-                                         {"  clearance_mm: 100", "  clearance_mm: 0", "head-out-of-range"}}) {
+  for (const Case& c :
+       std::vector<Case>{{"    a3: 0.0142857", "    a3: -1", "head-out-of-range"},
+                         {"    a3: 0.0142857", "    a3: fast", "head-bad-number"},
+                         {"  retract_mm: 100", "  retract: 100", "head-unknown-key"},
+                         {"  clearance_mm: 100", "  clearance_mm: 0", "head-out-of-range"}}) {
     const auto at = text.find(c.good);
     ASSERT_NE(at, std::string::npos) << c.good;
     const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sim_test_support.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/scene/scene.h"
 #include "stitchsim/sim/cell.h"
 #include "stitchsim/sim/collision.h"
@@ -30,7 +31,7 @@ std::vector<JointVector> PosesOverThePart(const CellSetup& cell, const geom::Sur
   while (static_cast<int>(out.size()) < count) {
     const Eigen::Vector2d uv =
         dom.min + (dom.max - dom.min).cwiseProduct(Eigen::Vector2d(u01(rng), u01(rng)));
-    const double yaw = 6.283185307179586 * u01(rng);
+    const double yaw = 2 * kPi * u01(rng);
     const Eigen::Vector3d n = s.Normal(uv);
     const Eigen::Vector3d t = s.Jacobian(uv).col(0).normalized();
     const Eigen::Vector3d y = (std::cos(yaw) * t + std::sin(yaw) * n.cross(t)).normalized();

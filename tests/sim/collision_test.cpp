@@ -17,6 +17,7 @@
 #include <string>
 
 #include "sim_test_support.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/planner/afp_planner.h"
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/program/dialect.h"
@@ -27,8 +28,6 @@
 
 namespace stitchsim::sim {
 namespace {
-
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 std::filesystem::path SourceDir() { return std::filesystem::path(STITCHSIM_SOURCE_DIR); }
 

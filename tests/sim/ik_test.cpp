@@ -4,10 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 #include <random>
 
 #include "sim_test_support.h"
+#include "stitchsim/common/units.h"
 
 namespace stitchsim::sim {
 namespace {
@@ -17,8 +17,6 @@ using testing::PositionError;
 using testing::RandomJoints;
 using testing::RotationError;
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
 constexpr double kPoseToleranceM = 1e-9;  // 1e-6 mm
 constexpr double kPoseToleranceRad = 1e-9;
 constexpr double kJointToleranceRad = 1e-8;  // away from singularities

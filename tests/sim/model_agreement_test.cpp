@@ -6,13 +6,13 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
-#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "sim_test_support.h"
 #include "stitchsim/common/files.h"
+#include "stitchsim/common/units.h"
 
 namespace stitchsim::sim {
 namespace {
@@ -298,7 +298,7 @@ TEST_F(sim_model_agreement, ServoGainsFollowFromMassMatrix) {
   MjModelPtr m = LoadLoadedCell(model().payload_rating(), /*with_part=*/false, error);
   ASSERT_NE(m, nullptr) << error;
   MjDataPtr d(mj_makeData(m.get()));
-  const double deg = std::numbers::pi / 180.0;
+  const double deg = kDeg;
   JointVector home = JointVector::Zero();
   home(kRailX) = 3.0;
   home(kA2) = -90.0 * deg;
@@ -311,7 +311,7 @@ TEST_F(sim_model_agreement, ServoGainsFollowFromMassMatrix) {
   mj_forward(m.get(), d.get());
   std::vector<mjtNum> mass(static_cast<std::size_t>(m->nv * m->nv));
   mj_fullM(m.get(), mass.data(), d->qM);
-  const double w = 2.0 * std::numbers::pi * kServoBandwidthHz;
+  const double w = 2.0 * kPi * kServoBandwidthHz;
   for (int i = 0; i < kNumJoints; ++i) {
     const JointInfo& joint = model().joint(i);
     SCOPED_TRACE(joint.name);

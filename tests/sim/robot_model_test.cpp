@@ -5,12 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <string>
 #include <vector>
 
 #include "sim_test_support.h"
 #include "stitchsim/common/files.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/scene/head_spec.h"
 
 namespace stitchsim::sim {
@@ -21,8 +21,6 @@ using testing::CellUrdfPath;
 using testing::FormatAll;
 using testing::PositionError;
 using testing::RotationError;
-
-constexpr double kPi = std::numbers::pi;
 
 class sim_robot_model : public CellTest {};
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "stitchsim/common/files.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/scene/head_spec.h"
 #include "stitchsim/sim/robot_model.h"
 
@@ -24,8 +25,8 @@ TEST(SequenceWeights, AfpHeadWeightsAreTheReciprocalAxisSpeeds) {
     const auto& w = head->sequence.axis_weights[static_cast<std::size_t>(j)];
     EXPECT_EQ(w.joint, info.name);
     // Speeds in m/s or rad/s; weights per mm or per degree.
-    const double per_unit =
-        info.type == JointType::kPrismatic ? info.max_velocity * 1000.0 : info.max_velocity * 180.0 / M_PI;
+    const double per_unit = info.type == JointType::kPrismatic ? info.max_velocity * 1000.0
+                                                               : info.max_velocity * 180.0 / kPi;
     EXPECT_NEAR(w.weight * per_unit, 1.0, 1e-5) << info.name;
   }
 }

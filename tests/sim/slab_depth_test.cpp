@@ -13,6 +13,7 @@
 #include <string>
 
 #include "sim_test_support.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/scene/scene.h"
 #include "stitchsim/sim/cell.h"
 #include "stitchsim/sim/collision.h"
@@ -21,7 +22,6 @@ namespace stitchsim::sim {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 const fs::path kSource = STITCHSIM_SOURCE_DIR;
 
 // Probe geometry in the flange frame (metres). The tool point is 0.82 m out along flange z

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/planner/afp_planner.h"
 #include "stitchsim/sim/executor.h"
 #include "stitchsim/verify/verifier.h"
@@ -47,7 +48,7 @@ struct TwoCourses {
 TwoCourses Build(const std::string& planned, double spacing_mm) {
   TwoCourses t;
   std::vector<std::string> lines = {"G21 G90", "T3 M6", "M70 P1 (PLY name=test angle=45)"};
-  const double dx = spacing_mm / std::sin(M_PI / 4);  // across a 45 deg helix
+  const double dx = spacing_mm / std::sin(kPi / 4);  // across a 45 deg helix
   for (int c = 1; c <= 2; ++c) {
     lines.push_back("M71 P" + std::to_string(c));
     const auto motion = MotionLines(planned, c == 1 ? 0.0 : dx);
@@ -90,7 +91,7 @@ TEST(AfpProgramme, TwoHelixCoursesGapOrOverlapInsideTheSecondCourse) {
   const testing::Loaded f = testing::Load("afp_concave_cylinder");
   ASSERT_TRUE(f.scene && f.robot);
   planner::AfpPlanOptions options;
-  options.lay_angle_rad = M_PI / 4;
+  options.lay_angle_rad = kPi / 4;
   DiagnosticSink sink;
   const auto plan = planner::PlanAfpCourse(*f.scene, nullptr, options, sink);
   ASSERT_TRUE(plan);

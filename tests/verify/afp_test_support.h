@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/surface_walk.h"
 #include "stitchsim/scene/scene.h"
 #include "stitchsim/verify/verifier.h"
@@ -15,7 +16,6 @@
 namespace stitchsim::verify::testing {
 
 inline constexpr double kTowWidth = 6.35;
-inline constexpr double kPi = 3.14159265358979323846;
 
 inline std::unique_ptr<scene::Scene> AfpScene(std::unique_ptr<geom::Surface> surface) {
   auto s = std::make_unique<scene::Scene>();

@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/sim/executor.h"
@@ -20,7 +21,6 @@ namespace {
 namespace fs = std::filesystem;
 const fs::path kSource = STITCHSIM_SOURCE_DIR;
 constexpr double kInch = 25.4;
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 // The doc's table: figure name -> (value, digits after the decimal point as printed).
 struct DocFigure {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "../planner/raster_test_support.h"
+#include "stitchsim/common/units.h"
 
 namespace stitchsim::verify {
 namespace {
@@ -152,7 +153,7 @@ TEST(ConstraintCrossing, TraverseAcrossIntercostalWithoutRetractCaughtOnItsLine)
 TEST(ConstraintCrossing, StitchBesideTheStringerEdgeIsJudgedByTheHandComputedFootprint) {
   const Fixture f = Load();
   const std::vector<std::string> planned = Lines(Plan(f, planner::RasterStrategy::kJump));
-  constexpr double kTilt = 3.4336 * 3.14159265358979323846 / 180.0;
+  constexpr double kTilt = 3.4336 * kPi / 180.0;
   const double centre = -15.0449 * kInch;
   const double half = (0.5 * std::cos(kTilt) + 0.75 * std::sin(kTilt)) * kInch + 1.0;
   const int target = NthG1(planned, 20);
@@ -193,7 +194,7 @@ TEST(ConstraintCrossing, StitchBesideTheStringerEdgeIsJudgedByTheHandComputedFoo
 TEST(ConstraintCrossing, RasterRowsStopOneRowBeyondTheHandComputedKeepOut) {
   const Fixture f = Load();
   const std::vector<std::string> lines = Lines(Plan(f, planner::RasterStrategy::kJump));
-  constexpr double kTilt = 3.4336 * 3.14159265358979323846 / 180.0;
+  constexpr double kTilt = 3.4336 * kPi / 180.0;
   const double centre = -15.0449 * kInch;
   const double keep_out =
       (0.5 * std::cos(kTilt) + 0.75 * std::sin(kTilt)) * kInch + 0.5 * kInch + 44.0;

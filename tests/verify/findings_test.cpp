@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/planner/afp_planner.h"
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/sim/executor.h"
@@ -202,7 +203,7 @@ TEST(Findings, AfpSyncFigureIsTheTravelCheckAndNoSilentWorst) {
   const Loaded l = Load("afp_concave_cylinder");
   DiagnosticSink sink;
   planner::AfpPlanOptions opt;
-  opt.lay_angle_rad = 45.0 * 3.14159265358979323846 / 180.0;
+  opt.lay_angle_rad = 45.0 * kPi / 180.0;
   const auto plan = planner::PlanAfpCourse(*l.scene, nullptr, opt, sink);
   ASSERT_TRUE(plan.has_value());
   std::ostringstream out;
@@ -276,7 +277,7 @@ TEST(Findings, NeedleRulesKeepTheEntryPoseOfTheirWorstWindow) {
     s.needles_in = in;
     s.drive_advancing = true;
     s.tool_part = Eigen::Translation3d(x_mm, 0, 0) *
-                  Eigen::AngleAxisd(turn_deg * 3.14159265358979 / 180.0, Eigen::Vector3d::UnitZ());
+                  Eigen::AngleAxisd(turn_deg * kDeg, Eigen::Vector3d::UnitZ());
     verifier.OnSample(s);
   };
   sample(0, 0, true, trace::SampleEvent::kNeedleEntry, 1);  // a clean window
@@ -295,8 +296,7 @@ TEST(Findings, NeedleRulesKeepTheEntryPoseOfTheirWorstWindow) {
     ASSERT_TRUE(rule->WorstEntryTool());
     EXPECT_NEAR(rule->WorstEntryTool()->translation().x(), 5.0, 1e-12);
     EXPECT_LT(Eigen::AngleAxisd(rule->WorstEntryTool()->linear()).angle(), 1e-12);
-    EXPECT_NEAR(Eigen::AngleAxisd(rule->WorstSample()->tool_part.linear()).angle() * 180.0 /
-                    3.14159265358979,
+    EXPECT_NEAR(Eigen::AngleAxisd(rule->WorstSample()->tool_part.linear()).angle() * kRadToDeg,
                 20.0, 1e-9);
   }
   EXPECT_EQ(found, 1);

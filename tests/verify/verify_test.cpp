@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/program/writer.h"
@@ -19,7 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 const fs::path kSource = STITCHSIM_SOURCE_DIR;
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 using testing::Load;
 using testing::Loaded;
@@ -156,8 +156,7 @@ TEST(Verify, CylinderChordStitchWidthVariesAboutSixPercent) {
   const double ls = chord / n;
   const Eigen::Matrix3d frame =
       *geom::FrameFromNormalAndDirection(s.Normal(p.curve->Start()), b - a);
-  const Eigen::Vector3d abc =
-      geom::EulerFromRotation(geom::EulerOrder{}, frame) * 180.0 / 3.14159265358979;
+  const Eigen::Vector3d abc = geom::EulerFromRotation(geom::EulerOrder{}, frame) * kRadToDeg;
   std::ostringstream prog;
   prog.precision(10);
   prog << "%\n(STITCHSIM stitch_length_mm=" << ls << ")\nG21 G90\nT1 M6\n";
@@ -254,10 +253,10 @@ TEST(Verify, FaultyProgrammesAreCaughtWithTheirLine) {
 TEST(Verify, SideForceOfATurnAboutToolYFiresOnItsLine) {
   const Loaded l = Load("flat_straight");
   // Tool frame at C-90: tool x is part -y, tool y is part +x.
-  const Eigen::Matrix3d flat = geom::RotationFromEuler({}, {0, 0, -90 * kDegToRad});
+  const Eigen::Matrix3d flat = geom::RotationFromEuler({}, {0, 0, -90 * kDeg});
   const Eigen::Matrix3d tilted =
-      flat * Eigen::AngleAxisd(0.6 * kDegToRad, Eigen::Vector3d::UnitY()).toRotationMatrix();
-  const Eigen::Vector3d abc = geom::EulerFromRotation({}, tilted) / kDegToRad;
+      flat * Eigen::AngleAxisd(0.6 * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Eigen::Vector3d abc = geom::EulerFromRotation({}, tilted) / kDeg;
   char angles[96];
   std::snprintf(angles, sizeof angles, "A%.6f B%.6f C%.6f", abc.x(), abc.y(), abc.z());
   const std::string text = std::string(kHead) + "G1 X5 U5 V5 F1500\nG1 X10 Y-0.1 Z0 " + angles +
@@ -271,7 +270,7 @@ TEST(Verify, SideForceOfATurnAboutToolYFiresOnItsLine) {
   // the window; the shaft tops (z = 12 mm) move to Ry(phi) p + dx, measured across the turned
   // needle axis. Insertion: p = (17, 0, 12), axis -z; catcher: p = (-12, 0, 12), axis
   // (1, 0, -1)/sqrt 2.
-  const double dx = 0.1 * 0.7, phi = 0.6 * kDegToRad * 0.7, c = std::cos(phi), s = std::sin(phi);
+  const double dx = 0.1 * 0.7, phi = 0.6 * kDeg * 0.7, c = std::cos(phi), s = std::sin(phi);
   auto drift = [&](double px, double pz, double ax, double az) {
     double ex = c * px + s * pz + dx - px, ez = -s * px + c * pz - pz;
     const double bx = c * ax + s * az, bz = -s * ax + c * az, along = ex * bx + ez * bz;

@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/rotation.h"
 #include "stitchsim/program/block.h"
 #include "stitchsim/program/dialect.h"
@@ -65,7 +66,7 @@ class PoseWords {
     if (!have_ || r != rotation_) {
       const Eigen::Vector3d e = geom::EulerFromRotation(order_, r, have_ ? &rad_ : nullptr);
       rad_ = e;
-      deg_ = e * (180.0 / 3.14159265358979323846);
+      deg_ = e * kRadToDeg;
       rotation_ = r;
       have_ = true;
     }

@@ -241,8 +241,8 @@ class Executor {
     if (have_joints_ && sol.ik.ok()) {
       for (int j = kA1; j <= kA6; ++j) {
         const double d = t.joints[j] - joints_[j];
-        if (std::abs(d) > 3.14159265358979323846) {
-          t.joints[j] -= 2 * 3.14159265358979323846 * std::round(d / (2 * 3.14159265358979323846));
+        if (std::abs(d) > kPi) {
+          t.joints[j] -= 2 * kPi * std::round(d / (2 * kPi));
           t.ik_status = IkStatus::kJointLimit;
         }
       }

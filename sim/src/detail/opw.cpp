@@ -67,7 +67,7 @@ void OpwInverse(const OpwGeometry& g, const Eigen::Isometry3d& base_to_flange,
   const double lateral = std::atan2(g.b_m, radial);
   const double dz = wrist.z() - g.c1_m;
 
-  const std::array<double, 2> t1 = {phi - lateral, phi + lateral - kPiD};
+  const std::array<double, 2> t1 = {phi - lateral, phi + lateral - kPi};
   const std::array<double, 2> dx = {radial - g.a1_m, -radial - g.a1_m};
   out.shoulder_to_wrist_front_m = std::hypot(dx[0], dz);
   out.shoulder_to_wrist_back_m = std::hypot(dx[1], dz);
@@ -91,7 +91,7 @@ void OpwInverse(const OpwGeometry& g, const Eigen::Isometry3d& base_to_flange,
       double t4 = std::atan2(m(1, 2), m(0, 2));
       if (sin5 < kExactSingularity) t4 = hint_t != nullptr ? (*hint_t)(3) : 0.0;
       for (int wrist_flip = 0; wrist_flip < 2; ++wrist_flip) {
-        const double u4 = wrist_flip == 0 ? t4 : t4 + kPiD;
+        const double u4 = wrist_flip == 0 ? t4 : t4 + kPi;
         const double u5 = wrist_flip == 0 ? t5 : -t5;
         // t6 from what remains, so the orientation is met even where t4 is ill-conditioned.
         const Eigen::Matrix3d n = (RotZ(u4) * RotY(u5)).transpose() * m;

@@ -6,20 +6,20 @@
 #include <array>
 #include <cmath>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/sim/kinematics.h"
 #include "stitchsim/sim/robot_model.h"
 
 namespace stitchsim::sim::detail {
 
-inline constexpr double kTwoPi = 6.283185307179586476925286766559;
-inline constexpr double kPiD = 3.141592653589793238462643383279;
+inline constexpr double kTwoPi = 2 * kPi;
 
 /// Angle wrapped to (-pi, pi].
 inline double WrapToPi(double angle_rad) {
   // Already there (most calls): std::remainder would return it unchanged, at many times the cost.
-  if (angle_rad > -kPiD && angle_rad <= kPiD) return angle_rad;
+  if (angle_rad > -kPi && angle_rad <= kPi) return angle_rad;
   double wrapped = std::remainder(angle_rad, kTwoPi);  // [-pi, pi]
-  if (wrapped <= -kPiD) wrapped += kTwoPi;
+  if (wrapped <= -kPi) wrapped += kTwoPi;
   return wrapped;
 }
 

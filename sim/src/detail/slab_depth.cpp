@@ -4,10 +4,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "stitchsim/common/units.h"
+
 namespace stitchsim::sim::detail {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxFaceIntervals = 4;
 constexpr int kMaxIntervals = 24;
 constexpr double kRefineM = 0.0002;      // face refinement stops at steps this small

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "stitchsim/common/diagnostics.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/curve.h"
 #include "stitchsim/program/dialect.h"
 #include "stitchsim/scene/scene.h"
@@ -51,10 +52,10 @@ SeedCylinderPose SeedConcaveCylinderPose(double alpha_rad, double seed_beta_rad,
 /// B / C travel the cell allows (limits `kin.afp_axes`: b_min_deg, b_max_deg, c_min_deg,
 /// c_max_deg; defaults +-90 / +-180 deg in the limit table, seed 003 section 4). Radians.
 struct AfpAxisLimits {
-  double b_min_rad = -1.5707963267948966;
-  double b_max_rad = 1.5707963267948966;
-  double c_min_rad = -3.141592653589793;
-  double c_max_rad = 3.141592653589793;
+  double b_min_rad = -kPi / 2;
+  double b_max_rad = kPi / 2;
+  double c_min_rad = -kPi;
+  double c_max_rad = kPi;
 };
 AfpAxisLimits AfpAxisLimitsFrom(const scene::RuleLimits& limits);
 

@@ -68,6 +68,9 @@ class StitchPathPlanner {
 
   int StitchCount() const { return count_; }
   double StitchLengthMm() const { return stitch_length_mm_; }
+  /// The stitch length asked for (the options', else the scene's); StitchLengthMm() divides
+  /// the path in equal stitches near it.
+  double NominalStitchLengthMm() const { return nominal_stitch_length_mm_; }
   double PathLengthMm() const { return path_.Length(); }
   bool Closed() const { return path_.Closed(); }
   Mode GetMode() const { return mode_; }
@@ -92,6 +95,7 @@ class StitchPathPlanner {
   PlanProgress progress_;
   int count_ = 0;
   double stitch_length_mm_ = 0.0;
+  double nominal_stitch_length_mm_ = 0.0;
   int next_index_ = 1;
   geom::PathPoint current_;    // stitch start point
   geom::PathPoint following_;  // its end point
@@ -99,18 +103,47 @@ class StitchPathPlanner {
   Eigen::Isometry3d start_pose_;
 };
 
+/// What one planned stitch lays in the programme: one coupled line to `end`, or (decoupled)
+/// a pure translation to `translate` (the whole stitch cycle, orientation kept) and then a
+/// pure rotation to `end` (needles out). Tool-point poses in the part frame (translation mm).
+struct StitchMoves {
+  bool decoupled = false;
+  Eigen::Isometry3d translate;  ///< decoupled: the stitch's start frame at its end point
+  Eigen::Isometry3d end;        ///< frame of the next stitch at this stitch's end point
+  double drive_mm = 0.0;        ///< drive (U) and path length (V) after the stitch, mm
+  double rotation_rad = 0.0;    ///< head rotation from start to end frame
+  int Lines() const { return decoupled ? 2 : 1; }  ///< motion lines it takes
+};
+
+/// The moves of `stitch`, planned at `stitch_length_mm`.
+StitchMoves MovesOf(const PlannedStitch& stitch, double stitch_length_mm);
+
+/// The head spec's rates the time estimate uses.
+struct StitchTiming {
+  double stitch_time_s = 0.0;         ///< one stitch cycle: 60 / stitch rate per minute
+  double rotation_speed_rad_s = 0.0;  ///< head rotation speed, rad/s
+  double settle_time_s = 0.0;         ///< after each pure rotation line, s
+};
+StitchTiming StitchTimingOf(const scene::StitchProcessSpec& spec);
+
+/// Adds the time of `moves` to `time`: decoupled, a stitch cycle of stitching and its rotation
+/// at the rotation speed plus the settle time; coupled, the longer of the two as stitching.
+void AddStitchTime(const StitchMoves& moves, const StitchTiming& timing, CycleTime& time);
+
 /// What WriteStitchProgram wrote.
 struct ProgramSummary {
   int stitches = 0;
   int decoupled = 0;
-  double stitch_length_mm = 0.0;
+  double stitch_length_mm = 0.0;          ///< as planned (the path split in equal stitches)
+  double nominal_stitch_length_mm = 0.0;  ///< asked for: the option's, else the scene's
   double path_length_mm = 0.0;
   long motion_lines = 0;
   CycleTime time;
   Mode mode = Mode::kAuto;
 };
 
-/// Writes the programme of one planned path (mm, G90) through the dialect's writer.
+/// Writes the programme of one planned path (mm, G90) through the dialect's writer,
+/// streaming: per stitch, its moves (MovesOf), their time (AddStitchTime), their text.
 ProgramSummary WriteStitchProgram(StitchPathPlanner& planner, const scene::Scene& scene,
                                   const std::string& path_name, const program::Dialect& dialect,
                                   std::ostream& out);

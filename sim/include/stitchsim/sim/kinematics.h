@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "stitchsim/common/units.h"
 #include "stitchsim/sim/robot_model.h"
 
 namespace stitchsim::sim {
@@ -92,7 +93,7 @@ ArmIkSolutions AllArmIkSolutions(const RobotModel& model,
 
 struct IkOptions {
   /// Wrist singular when |sin(t5)| < sin(this) (t5 = a5 on this cell). Radians.
-  double wrist_singularity_rad = 0.017453292519943295;  // 1 deg
+  double wrist_singularity_rad = kDeg;  // 1 deg
   /// Shoulder singular when the wrist centre is closer than this to the a1 axis. Metres.
   double shoulder_singularity_m = 0.05;
   /// Slack on joint limits (m or rad) so a pose exactly at a limit is accepted; a returned
