@@ -25,6 +25,11 @@ Model SceneModel(const LoadedScene& ls) {
   return m;
 }
 
+CloseUpContext ContextOf(const testing::PlantedRun& run, const Model& m) {
+  return {&run.ls,       run.process.get(), &run.cell,
+          m.model.get(), m.data.get(),      &run.verifier->StitchMarks()};
+}
+
 TEST(CloseUp, JointLimitFramesTheLinkTheJointMoves) {
   auto run = testing::PlantJointLimit("flat_straight");
   ASSERT_NE(run, nullptr);
@@ -40,8 +45,7 @@ TEST(CloseUp, JointLimitFramesTheLinkTheJointMoves) {
 
   Model m = SceneModel(run->ls);
   ASSERT_NE(m.model, nullptr);
-  const CloseUpContext ctx{&run->ls,      run->process.get(), &run->cell,
-                           m.model.get(), m.data.get(),       &run->verifier->StitchMarks()};
+  const CloseUpContext ctx = ContextOf(*run, m);
   std::optional<CloseUpPlan> plan;
   std::string error;
   ASSERT_TRUE(PlanCloseUp(ctx, *rule, plan, error)) << error;
@@ -84,8 +88,7 @@ TEST(CloseUp, ARuleWithoutAFamilyPlansNone) {
   EXPECT_EQ(rule->CloseUp(), verify::CloseUpFamily::kNone);
   Model m = SceneModel(run->ls);
   ASSERT_NE(m.model, nullptr);
-  const CloseUpContext ctx{&run->ls,      run->process.get(), &run->cell,
-                           m.model.get(), m.data.get(),       &run->verifier->StitchMarks()};
+  const CloseUpContext ctx = ContextOf(*run, m);
   std::optional<CloseUpPlan> plan = CloseUpPlan{};
   std::string error;
   ASSERT_TRUE(PlanCloseUp(ctx, *rule, plan, error)) << error;
