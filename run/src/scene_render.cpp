@@ -7,11 +7,11 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "detail/close_up_draw.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/common/units.h"
 #include "stitchsim/geom/curve.h"
 #include "stitchsim/render/scene_model.h"
-#include "stitchsim/sim/robot_model.h"
 
 namespace stitchsim::run {
 namespace {
@@ -170,25 +170,13 @@ Status RenderScene(const LoadedScene& ls, const RenderRequest& req, DiagnosticSi
   render::MjModelPtr model = render::LoadSceneModel(*ls.scene, sink);
   if (sink.HasErrors() || !model) return Status::InSink();
   render::MjDataPtr data(mj_makeData(model.get()));
-  const auto& q = req.joints;
-  for (int j = 0; j < sim::kNumJoints; ++j) {
-    const int id = mj_name2id(model.get(), mjOBJ_JOINT, std::string(sim::kJointNames[j]).c_str());
-    if (id < 0) {
-      return Status::Error("model-missing-joint",
-                           "MuJoCo model lacks joint " + std::string(sim::kJointNames[j]));
-    }
-    data->qpos[model->jnt_qposadr[id]] = q[j];
-  }
-  mj_kinematics(model.get(), data.get());
   std::string error;
+  if (!close_up::PoseModel(*model, *data, req.joints, error)) {
+    return Status::Error("model-missing-joint", error);
+  }
   auto renderer = render::OffscreenRenderer::Create(model.get(), req.width, req.height, error);
   if (!renderer) return Status::Error("render-context", error);
-  const int part_body = mj_name2id(model.get(), mjOBJ_BODY, "part");
-  Eigen::Isometry3d part_world = Eigen::Isometry3d::Identity();
-  for (int r = 0; r < 3; ++r) {
-    part_world.translation()[r] = data->xpos[3 * part_body + r];
-    for (int c = 0; c < 3; ++c) part_world.linear()(r, c) = data->xmat[9 * part_body + 3 * r + c];
-  }
+  const Eigen::Isometry3d part_world = close_up::PartWorld(*model, *data);
   const bool close_up = req.view == "head";
   std::vector<double> radius_scale;
   std::vector<render::Overlay> overlays =

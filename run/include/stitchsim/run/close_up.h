@@ -45,14 +45,15 @@ struct CloseUpPlan {
   std::vector<render::LegendEntry> legend;
 };
 
-/// What the planners read besides the rule (none owned; all outlive the planning).
+/// What the planners read besides the rule.
 struct CloseUpContext {
-  const LoadedScene* ls = nullptr;                 ///< the scene and its robot
-  const process::ProcessModel* process = nullptr;  ///< the needles (stitching heads)
-  const trace::CellDescription* cell = nullptr;    ///< collision body names
-  mjModel* model = nullptr;  ///< the scene's MuJoCo model (render::LoadSceneModel)
-  mjData* data = nullptr;    ///< the model's data, posed by PlanCloseUp at the picture's joints
-  const std::vector<verify::StitchMark>* stitches = nullptr;  ///< every stitch, by verdict
+  const LoadedScene* ls = nullptr;                 ///< not owned; the scene and its robot
+  const process::ProcessModel* process = nullptr;  ///< not owned; the needles (stitching)
+  const trace::CellDescription* cell = nullptr;    ///< not owned; collision body names
+  mjModel* model = nullptr;  ///< not owned; the scene's MuJoCo model (render::LoadSceneModel)
+  mjData* data = nullptr;    ///< not owned; posed by PlanCloseUp at the picture's joints
+  /// Not owned; every stitch by verdict (part frame, mm), for the constraint close-up.
+  const std::vector<verify::StitchMark>* stitches = nullptr;
 };
 
 /// The finding a rule's close-up is about: the error at the worst sample's line, else the

@@ -18,12 +18,12 @@
 
 namespace stitchsim::run {
 
-/// What the page shows (none owned; all outlive the call).
+/// What the page shows.
 struct HtmlInputs {
-  const verify::Report* report = nullptr;
-  const verify::Verifier* verifier = nullptr;  ///< finished, with stitch marks
-  const LoadedScene* scene = nullptr;          ///< the scene and its robot
-  const PoseTrack* poses = nullptr;            ///< line-end poses, thinned
+  const verify::Report* report = nullptr;      ///< not owned; the run's report
+  const verify::Verifier* verifier = nullptr;  ///< not owned; finished, with stitch marks
+  const LoadedScene* scene = nullptr;          ///< not owned; the scene and its robot
+  const PoseTrack* poses = nullptr;            ///< not owned; line-end poses, thinned
   /// Snapshot PNGs (file name, file bytes), in the order shown.
   std::vector<std::pair<std::string, std::string>> snapshots;
 };

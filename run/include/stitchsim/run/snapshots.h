@@ -17,13 +17,13 @@
 
 namespace stitchsim::run {
 
-/// What the pictures of a finished run read (none owned; all outlive the call).
+/// What the pictures of a finished run read.
 struct SnapshotInputs {
-  const LoadedScene* scene = nullptr;              ///< the scene and its robot
-  const process::ProcessModel* process = nullptr;  ///< the needles (stitching heads)
-  const trace::CellDescription* cell = nullptr;    ///< collision body names
-  const verify::Verifier* verifier = nullptr;      ///< finished, with stitch marks
-  const verify::Report* report = nullptr;          ///< the run's report (titles)
+  const LoadedScene* scene = nullptr;              ///< not owned; the scene and its robot
+  const process::ProcessModel* process = nullptr;  ///< not owned; the needles (stitching)
+  const trace::CellDescription* cell = nullptr;    ///< not owned; collision body names
+  const verify::Verifier* verifier = nullptr;      ///< not owned; finished, with stitch marks
+  const verify::Report* report = nullptr;          ///< not owned; the run's report (titles)
 };
 
 /// Writes the snapshot folder `dir` (created if missing). The scene model's diagnostics go
