@@ -21,7 +21,7 @@ using nlohmann::json;
 json JsonNumber(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 json JsonOptional(const std::optional<double>& v) { return v ? JsonNumber(*v) : json(nullptr); }
 
-json SummaryJson(const verify::Report& r, const scene::Scene& scene) {
+json PageSummaryJson(const verify::Report& r, const scene::Scene& scene) {
   return json{{"program", r.program_file},
               {"scene_file", r.scene_file},
               {"scene", r.scene_name},
@@ -38,7 +38,7 @@ json SummaryJson(const verify::Report& r, const scene::Scene& scene) {
               {"kind", scene.head.kind == scene::HeadKind::kAfp ? "afp" : "stitch"}};
 }
 
-json RulesJson(const verify::Report& r) {
+json PageRulesJson(const verify::Report& r) {
   json rules = json::array();
   for (const verify::RuleSummary& s : r.rules) {
     rules.push_back(json{{"id", s.id},
@@ -57,7 +57,7 @@ json RulesJson(const verify::Report& r) {
   return rules;
 }
 
-json FindingsJson(const verify::Report& r, std::size_t max_findings) {
+json PageFindingsJson(const verify::Report& r, std::size_t max_findings) {
   std::vector<const verify::Finding*> all;
   for (const verify::RuleSummary& s : r.rules) {
     for (const verify::Finding& f : s.findings) all.push_back(&f);
@@ -93,7 +93,7 @@ json FindingsJson(const verify::Report& r, std::size_t max_findings) {
 }
 
 // Every flagged stitch, and clean ones evenly thinned to fill the budget.
-json StitchesJson(const verify::Verifier& v, std::size_t max_stitches) {
+json PageStitchesJson(const verify::Verifier& v, std::size_t max_stitches) {
   const auto& marks = v.StitchMarks();
   std::size_t flagged = 0;
   for (const auto& m : marks) flagged += m.severity > 0 ? 1 : 0;
@@ -122,7 +122,7 @@ json StitchesJson(const verify::Verifier& v, std::size_t max_stitches) {
               {"total", static_cast<long>(marks.size())}};
 }
 
-json DrawingsJson(const verify::Verifier& v) {
+json PageDrawingsJson(const verify::Verifier& v) {
   json out = json::array();
   for (const auto& rule : v.Rules()) {
     for (const verify::DrawnPoints& d : rule->Drawings()) {
@@ -139,7 +139,7 @@ json DrawingsJson(const verify::Verifier& v) {
   return out;
 }
 
-json PosesJson(const PoseTrack& track, json& path) {
+json PagePosesJson(const PoseTrack& track, json& path) {
   std::vector<std::int32_t> lines;
   std::vector<float> q, t, tool;
   for (const LinePose& p : track.Poses()) {
@@ -152,7 +152,7 @@ json PosesJson(const PoseTrack& track, json& path) {
   return json{{"lines", Base64Of(lines)}, {"q", Base64Of(q)}, {"t", Base64Of(t)}};
 }
 
-json SeriesJson(const verify::Verifier& v) {
+json PageSeriesJson(const verify::Verifier& v) {
   json out = json::array();
   for (const auto& rule : v.Rules()) {
     const verify::ValueSeries& s = rule->Series();
@@ -192,10 +192,10 @@ json HtmlData(const HtmlInputs& in, const HtmlLimits& limits, std::string& error
     snapshots.push_back(json{{"name", name}, {"png", Base64(bytes.data(), bytes.size())}});
   }
   json path;
-  json poses = PosesJson(*in.poses, path);
+  json poses = PagePosesJson(*in.poses, path);
   return json{{"format", "stitchsim-html-1"},
-              {"summary", SummaryJson(*in.report, *in.scene->scene)},
-              {"rules", RulesJson(*in.report)},
+              {"summary", PageSummaryJson(*in.report, *in.scene->scene)},
+              {"rules", PageRulesJson(*in.report)},
               {"skipped",
                [&] {
                  json s = json::array();
@@ -203,14 +203,14 @@ json HtmlData(const HtmlInputs& in, const HtmlLimits& limits, std::string& error
                    s.push_back({{"id", k.id}, {"reason", k.reason}});
                  return s;
                }()},
-              {"findings", FindingsJson(*in.report, limits.max_findings)},
+              {"findings", PageFindingsJson(*in.report, limits.max_findings)},
               {"snapshots", std::move(snapshots)},
               {"cell", std::move(cell)},
-              {"stitches", StitchesJson(*in.verifier, limits.max_stitches)},
+              {"stitches", PageStitchesJson(*in.verifier, limits.max_stitches)},
               {"path", std::move(path)},
-              {"drawings", DrawingsJson(*in.verifier)},
+              {"drawings", PageDrawingsJson(*in.verifier)},
               {"poses", std::move(poses)},
-              {"series", SeriesJson(*in.verifier)}};
+              {"series", PageSeriesJson(*in.verifier)}};
 }
 
 std::string HtmlPage(const json& data, std::string& error) {

@@ -16,8 +16,9 @@
 namespace stitchsim::run {
 namespace {
 
-std::vector<render::Overlay> PathOverlays(const scene::Scene& scene,
-                                          const Eigen::Isometry3d& part_world_m, double radius_m) {
+std::vector<render::Overlay> ScenePathOverlays(const scene::Scene& scene,
+                                               const Eigen::Isometry3d& part_world_m,
+                                               double radius_m) {
   // Each overlay geom costs the software renderer ~100 KB: all paths together get at most
   // kMaxPathSegments segments (one per 5 mm of a path, thinned to its share), and beyond
   // kMaxPathSegments / 2 paths an evenly spaced subset is drawn (at most ~3000 points).
@@ -48,7 +49,7 @@ std::vector<render::Overlay> PathOverlays(const scene::Scene& scene,
 }
 
 // Which part of the picture a segmented geom belongs to.
-std::string CoverageClass(const std::string& geom, const std::string& body) {
+std::string PixelCoverageClass(const std::string& geom, const std::string& body) {
   if (geom.rfind("overlay:", 0) == 0) return geom.substr(8);
   if (geom == render::kMoldGeom) return "mold";
   if (geom == render::kPreformGeom) return "preform";
@@ -61,7 +62,7 @@ std::string CoverageClass(const std::string& geom, const std::string& body) {
   return "other";
 }
 
-nlohmann::json CoverageJson(const render::Segmentation& seg, const render::Image& img) {
+nlohmann::json PixelCoverageJson(const render::Segmentation& seg, const render::Image& img) {
   std::map<std::string, long> counts;
   for (int label : seg.label) {
     if (label < 0) {
@@ -69,7 +70,7 @@ nlohmann::json CoverageJson(const render::Segmentation& seg, const render::Image
       continue;
     }
     const auto i = static_cast<std::size_t>(label);
-    ++counts[CoverageClass(seg.names[i], seg.body_names[i])];
+    ++counts[PixelCoverageClass(seg.names[i], seg.body_names[i])];
   }
   // Colour spread of the picture itself: a blank image has none.
   double mean = 0, sq = 0;
@@ -87,7 +88,7 @@ nlohmann::json CoverageJson(const render::Segmentation& seg, const render::Image
   return j;
 }
 
-render::CameraView FrameView(const std::vector<Eigen::Vector3d>& points_m, bool close_up) {
+render::CameraView RenderFrameView(const std::vector<Eigen::Vector3d>& points_m, bool close_up) {
   Eigen::Vector3d lo = points_m.front(), hi = points_m.front();
   for (const auto& p : points_m) {
     lo = lo.cwiseMin(p);
@@ -109,7 +110,7 @@ std::vector<render::Overlay> RequestOverlays(const LoadedScene& ls, const Render
                                              std::vector<double>& radius_scale) {
   std::vector<render::Overlay> overlays;
   if (req.point_sets.empty()) {
-    overlays = PathOverlays(*ls.scene, part_world, close_up ? 0.0015 : 0.006);
+    overlays = ScenePathOverlays(*ls.scene, part_world, close_up ? 0.0015 : 0.006);
   }
   radius_scale.assign(overlays.size(), 1.0);
   for (const auto& set : req.point_sets) {
@@ -184,7 +185,7 @@ Status RenderScene(const LoadedScene& ls, const RenderRequest& req, DiagnosticSi
   const bool part_view = req.view == "part";
   const std::vector<Eigen::Vector3d> interest =
       InterestPoints(req, overlays, *model, *data, part_world, close_up, part_view);
-  render::CameraView view = FrameView(interest, close_up);
+  render::CameraView view = RenderFrameView(interest, close_up);
   if (part_view) {
     // The stitches from above at a slant, close enough to tell them apart.
     Eigen::Vector3d lo = interest.front(), hi = interest.front();
@@ -219,7 +220,7 @@ Status RenderScene(const LoadedScene& ls, const RenderRequest& req, DiagnosticSi
   }
   if (!req.coverage_json.empty()) {
     const render::Segmentation seg = renderer->RenderSegmentation(data.get(), view, overlays);
-    const std::string text = CoverageJson(seg, img).dump(2) + "\n";
+    const std::string text = PixelCoverageJson(seg, img).dump(2) + "\n";
     if (std::string err = WriteFileAtomically(req.coverage_json, text); !err.empty()) {
       return Status::Error("io-write", err);
     }

@@ -29,7 +29,7 @@ constexpr std::array<float, 4> kErrorRgba = {0.95f, 0.05f, 0.05f, 1.0f};
 constexpr render::Rgb kErrorAccent = {200, 30, 30};
 constexpr render::Rgb kPassAccent = {40, 160, 60};
 
-std::string LegendText(const std::string& label) {
+std::string OverviewLegendText(const std::string& label) {
   if (label == "stitch") return "stitch, clean";
   if (label == "stitch_warning") return "stitch with a warning";
   if (label == "stitch_error") return "stitch with an error";
@@ -41,7 +41,7 @@ std::string LegendText(const std::string& label) {
   return label;
 }
 
-std::string CountOf(long n, const char* one, const char* many) {
+std::string CountedNoun(long n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
@@ -114,16 +114,16 @@ Status WriteOverview(const SnapshotInputs& in, const render::SnapshotFonts& font
   req.output = (dir / "overview.png").string();
   render::TitleBar title;
   title.line1 = "overview · " + std::string(report.errors == 0 ? "PASS" : "FAIL") + ": " +
-                CountOf(report.errors, "error", "errors") + ", " +
-                CountOf(report.warnings, "warning", "warnings");
+                CountedNoun(report.errors, "error", "errors") + ", " +
+                CountedNoun(report.warnings, "warning", "warnings");
   title.line2 = "scene " + report.scene_name + " · " +
-                (report.stitches > 0 ? CountOf(report.stitches, "stitch", "stitches")
-                                     : CountOf(report.moves, "move", "moves")) +
+                (report.stitches > 0 ? CountedNoun(report.stitches, "stitch", "stitches")
+                                     : CountedNoun(report.moves, "move", "moves")) +
                 " · " + fs::path(report.program_file).filename().string();
   title.accent = report.errors == 0 ? kPassAccent : kErrorAccent;
   std::vector<render::LegendEntry> legend;
   for (const auto& set : req.point_sets) {
-    legend.push_back({render::ToRgb(set.rgba), LegendText(set.label)});
+    legend.push_back({render::ToRgb(set.rgba), OverviewLegendText(set.label)});
   }
   if (legend.empty()) legend.push_back({render::ToRgb({0.1f, 0.9f, 0.2f, 1.0f}), "scene paths"});
   req.decorate = [&](render::Image& img) {
@@ -136,8 +136,8 @@ Status WriteOverview(const SnapshotInputs& in, const render::SnapshotFonts& font
 render::TitleBar CloseUpTitle(const verify::Rule& rule, const verify::Report& report) {
   const verify::RuleSummary& s = rule.Summary();
   render::TitleBar t;
-  t.line1 = s.id + " · ERROR · " + CountOf(s.errors, "line", "lines") + " with errors";
-  if (s.warnings > 0) t.line1 += ", " + CountOf(s.warnings, "warning", "warnings");
+  t.line1 = s.id + " · ERROR · " + CountedNoun(s.errors, "line", "lines") + " with errors";
+  if (s.warnings > 0) t.line1 += ", " + CountedNoun(s.warnings, "warning", "warnings");
   const verify::Finding* f = FocusFinding(rule);
   std::string l2;
   if (f != nullptr) {
@@ -151,7 +151,7 @@ render::TitleBar CloseUpTitle(const verify::Rule& rule, const verify::Report& re
   return t;
 }
 
-std::vector<std::string> GeomNames(const mjModel& m, const std::vector<int>& geoms) {
+std::vector<std::string> ShotGeomNames(const mjModel& m, const std::vector<int>& geoms) {
   std::vector<std::string> out;
   for (int g : geoms) {
     const char* n = mj_id2name(&m, mjOBJ_GEOM, g);
@@ -177,7 +177,7 @@ nlohmann::json ShotJson(const mjModel& m, const std::string& file, const verify:
   for (std::size_t i = 0; i < shot.pixels.size(); ++i) {
     const SubjectPixels& p = shot.pixels[i];
     subjects.push_back({{"name", p.name},
-                        {"geoms", GeomNames(m, plan.subjects[i].geoms)},
+                        {"geoms", ShotGeomNames(m, plan.subjects[i].geoms)},
                         {"overlays", plan.subjects[i].overlays},
                         {"pixels", p.visible},
                         {"alone_pixels", p.alone},
@@ -186,7 +186,7 @@ nlohmann::json ShotJson(const mjModel& m, const std::string& file, const verify:
   j["subjects"] = subjects;
   j["joints"] = std::vector<double>(plan.joints.data(), plan.joints.data() + plan.joints.size());
   j["see_through"] = shot.see_through;
-  j["transparent_geoms"] = GeomNames(m, shot.transparent);
+  j["transparent_geoms"] = ShotGeomNames(m, shot.transparent);
   nlohmann::json legend = nlohmann::json::array();
   for (const auto& e : plan.legend) legend.push_back(e.label);
   j["legend"] = legend;
