@@ -1,43 +1,14 @@
 #pragma once
-// `verify --html`: one self-contained HTML file (docs/report-format.md, "HTML report"): the
-// report, the snapshots, and the data the page's 3D view and plots draw (the cell's bodies
-// and meshes, the part, the stitches or tows by verdict, the robot's poses along the
-// programme, every rule's values along it), with three.js embedded at build time.
+// `verify --html` (run/html_report.h): the page written, the outcome printed.
 
 #include <string>
-#include <utility>
-#include <vector>
 
-#include "cli_common.h"
-#include "stitchsim/run/pose_track.h"
-#include "stitchsim/verify/report.h"
-#include "stitchsim/verify/verifier.h"
+#include "stitchsim/run/html_report.h"
 
 namespace stitchsim::app {
 
-struct HtmlInputs {
-  const verify::Report* report = nullptr;
-  const verify::Verifier* verifier = nullptr;  ///< with stitch marks
-  const LoadedScene* scene = nullptr;
-  const run::PoseTrack* poses = nullptr;
-  /// Snapshot PNGs (file name, file bytes), in the order shown.
-  std::vector<std::pair<std::string, std::string>> snapshots;
-};
-
-/// Bounds that keep a whole-wing page under 50 MB and quick to open.
-struct HtmlLimits {
-  std::size_t max_stitches = 300000;  ///< stitch points drawn (flagged ones first)
-  std::size_t max_poses = 60000;      ///< thinned line-end poses (finding lines always kept)
-  std::size_t max_faces = 300000;     ///< mesh faces of the cell and part together
-  std::size_t max_findings = 5000;    ///< findings listed (the report keeps 200 a rule)
-};
-
-/// The page's data (the JSON the page reads); `error` set and null on failure.
-nlohmann::json HtmlData(const HtmlInputs& in, const HtmlLimits& limits, std::string& error);
-
-/// The page: the template with three.js, the app and `data` put in. Throws nothing; returns
-/// "" with `error` set when an asset cannot be embedded safely.
-std::string HtmlPage(const nlohmann::json& data, std::string& error);
+using run::HtmlInputs;
+using run::HtmlLimits;
 
 /// Writes the page whole or not at all; exit code (errors printed).
 int WriteHtmlReport(const std::string& path, const HtmlInputs& in);

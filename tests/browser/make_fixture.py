@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""Builds a test HTML report from app/html/report.html with synthetic data.
+"""Builds a test HTML report from run/html/report.html with synthetic data.
 
 The page is assembled as `stitchsim verify --html` does it: each marker line of the template is
 replaced by an inline script (three.js and OrbitControls from Debian's libjs-three, the data as
-JSON with every "</" written "<\\/", app/html/report.js). The data: an 8-joint arm of boxes,
+JSON with every "</" written "<\\/", run/html/report.js). The data: an 8-joint arm of boxes,
 capsules, cylinders and a sphere on a floor rail, a rotator carrying a part body with a curved
 panel mesh, stitches in rows on the panel (a few warning and error clusters), the tool path,
 poses, findings, one series per rule and two snapshots.
@@ -29,7 +29,7 @@ THREE_DIR = "/usr/share/javascript/three"
 MARKERS = {
     "THREE": os.path.join(THREE_DIR, "three.min.js"),
     "ORBIT": os.path.join(THREE_DIR, "examples/js/controls/OrbitControls.js"),
-    "APP": os.path.join(ROOT, "app/html/report.js"),
+    "APP": os.path.join(ROOT, "run/html/report.js"),
 }
 JOINTS = ["rail_x", "a1", "a2", "a3", "a4", "a5", "a6", "rotator"]
 HOME = [2.8, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
@@ -324,7 +324,7 @@ def main():
     data = make_data(args.stitches, args.max_points, args.max_poses)
     if args.broken:
         data["stitches"]["verdict"] = "!!not base64!!"
-    with open(os.path.join(ROOT, "app/html/report.html"), encoding="utf-8") as f:
+    with open(os.path.join(ROOT, "run/html/report.html"), encoding="utf-8") as f:
         template = f.read()
     page = assemble(template, json.dumps(data, separators=(",", ":"), allow_nan=False))
     with open(args.out, "w", encoding="utf-8") as f:

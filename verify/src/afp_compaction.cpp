@@ -12,6 +12,7 @@
 #include <string>
 
 #include "afp_laid.h"
+#include "detail/rule_registry.h"
 #include "stitchsim/common/units.h"
 
 namespace stitchsim::verify {
@@ -98,9 +99,11 @@ class CompactionRule final : public Rule {
 
 }  // namespace
 
-std::unique_ptr<Rule> MakeAfpCompactionRule(const RuleContext& ctx,
-                                            std::shared_ptr<detail::LaidTows> laid) {
-  return std::make_unique<CompactionRule>(ctx, std::move(laid));
+RuleEntry AfpCompactionRuleEntry() {
+  return {"afp.compaction", CloseUpFamily::kAfp, detail::RunsWhenLaying,
+          [](const RuleContext& ctx, detail::RuleMaking& making) -> std::unique_ptr<Rule> {
+            return std::make_unique<CompactionRule>(ctx, making.Laid(ctx));
+          }};
 }
 
 }  // namespace stitchsim::verify

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "afp_laid.h"
+#include "detail/rule_registry.h"
 #include "stitchsim/process/afp_coverage.h"
 #include "stitchsim/verify/afp_coverage_image.h"
 
@@ -271,9 +272,12 @@ std::vector<CoverageImage> CoverageImages(const Verifier& verifier, int max_side
   return {};
 }
 
-std::unique_ptr<Rule> MakeAfpCoverageRule(const RuleContext& ctx,
-                                          std::shared_ptr<detail::LaidTows> laid) {
-  return std::make_unique<CoverageRule>(ctx, std::move(laid));
+// Its picture is the coverage map (afp_coverage_image.h), not a close-up.
+RuleEntry AfpCoverageRuleEntry() {
+  return {"afp.coverage", CloseUpFamily::kNone, detail::RunsWhenLaying,
+          [](const RuleContext& ctx, detail::RuleMaking& making) -> std::unique_ptr<Rule> {
+            return std::make_unique<CoverageRule>(ctx, making.Laid(ctx));
+          }};
 }
 
 }  // namespace stitchsim::verify

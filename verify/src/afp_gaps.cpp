@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "afp_laid.h"
+#include "detail/rule_registry.h"
 #include "stitchsim/geom/polygon2.h"
 #include "stitchsim/geom/surface_walk.h"
 
@@ -261,14 +262,18 @@ class CourseEdgeRule final : public Rule {
 
 }  // namespace
 
-std::unique_ptr<Rule> MakeAfpGapRule(const RuleContext& ctx,
-                                     std::shared_ptr<detail::LaidTows> laid) {
-  return std::make_unique<CourseEdgeRule>(ctx, std::move(laid), true);
+// Gaps and overlaps show on the overview and the coverage map, not in a close-up.
+RuleEntry AfpGapRuleEntry() {
+  return {"afp.gap", CloseUpFamily::kNone, detail::RunsWhenLaying,
+          [](const RuleContext& ctx, detail::RuleMaking& making) -> std::unique_ptr<Rule> {
+            return std::make_unique<CourseEdgeRule>(ctx, making.Laid(ctx), true);
+          }};
 }
-
-std::unique_ptr<Rule> MakeAfpOverlapRule(const RuleContext& ctx,
-                                         std::shared_ptr<detail::LaidTows> laid) {
-  return std::make_unique<CourseEdgeRule>(ctx, std::move(laid), false);
+RuleEntry AfpOverlapRuleEntry() {
+  return {"afp.overlap", CloseUpFamily::kNone, detail::RunsWhenLaying,
+          [](const RuleContext& ctx, detail::RuleMaking& making) -> std::unique_ptr<Rule> {
+            return std::make_unique<CourseEdgeRule>(ctx, making.Laid(ctx), false);
+          }};
 }
 
 }  // namespace stitchsim::verify

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "afp_laid.h"
+#include "detail/rule_registry.h"
 
 namespace stitchsim::verify {
 namespace {
@@ -154,9 +155,11 @@ class SteeringRadiusRule final : public Rule {
 
 }  // namespace
 
-std::unique_ptr<Rule> MakeAfpSteeringRule(const RuleContext& ctx,
-                                          std::shared_ptr<detail::LaidTows> laid) {
-  return std::make_unique<SteeringRadiusRule>(ctx, std::move(laid));
+RuleEntry AfpSteeringRuleEntry() {
+  return {"afp.steering_radius", CloseUpFamily::kAfp, detail::RunsWhenLaying,
+          [](const RuleContext& ctx, detail::RuleMaking& making) -> std::unique_ptr<Rule> {
+            return std::make_unique<SteeringRadiusRule>(ctx, making.Laid(ctx));
+          }};
 }
 
 }  // namespace stitchsim::verify

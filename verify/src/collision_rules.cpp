@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "detail/carry_bytes.h"
+#include "detail/rule_registry.h"
 #include "stitchsim/verify/rule.h"
 
 namespace stitchsim::verify {
@@ -165,22 +166,39 @@ class ClearanceRule final : public Rule {
 
 }  // namespace
 
-std::unique_ptr<Rule> MakeCollisionHeadMoldRule(const RuleContext& ctx) {
-  return std::make_unique<ContactRule>(ctx, "collision.head_mold",
-                                       "head or arm interfering with the mold, preform or a "
-                                       "constraint (penetration depth, mm)",
-                                       trace::ContactClass::kHeadPart);
+namespace {
+
+// The collision.* rules run when the trace carries collision results (skipped with
+// --no-collision).
+RulePresence RunsWhenCollisionChecked(const RuleContext& ctx) {
+  return ctx.cell->collision_checked ? RulePresence::Runs()
+                                     : RulePresence::Skipped("--no-collision");
 }
 
-std::unique_ptr<Rule> MakeCollisionRobotCellRule(const RuleContext& ctx) {
-  return std::make_unique<ContactRule>(ctx, "collision.robot_cell",
-                                       "arm, carriage or head interfering with the rail, rotator, "
-                                       "table, floor or another link (penetration depth, mm)",
-                                       trace::ContactClass::kRobotCell);
-}
+}  // namespace
 
-std::unique_ptr<Rule> MakeCollisionClearanceRule(const RuleContext& ctx) {
-  return std::make_unique<ClearanceRule>(ctx);
+RuleEntry CollisionHeadMoldRuleEntry() {
+  return {"collision.head_mold", CloseUpFamily::kCollision, RunsWhenCollisionChecked,
+          [](const RuleContext& ctx, detail::RuleMaking&) -> std::unique_ptr<Rule> {
+            return std::make_unique<ContactRule>(ctx, "collision.head_mold",
+                                                 "head or arm interfering with the mold, preform "
+                                                 "or a constraint (penetration depth, mm)",
+                                                 trace::ContactClass::kHeadPart);
+          }};
+}
+RuleEntry CollisionRobotCellRuleEntry() {
+  return {"collision.robot_cell", CloseUpFamily::kCollision, RunsWhenCollisionChecked,
+          [](const RuleContext& ctx, detail::RuleMaking&) -> std::unique_ptr<Rule> {
+            return std::make_unique<ContactRule>(ctx, "collision.robot_cell",
+                                                 "arm, carriage or head interfering with the "
+                                                 "rail, rotator, table, floor or another link "
+                                                 "(penetration depth, mm)",
+                                                 trace::ContactClass::kRobotCell);
+          }};
+}
+RuleEntry CollisionClearanceRuleEntry() {
+  return {"collision.clearance", CloseUpFamily::kCollision, RunsWhenCollisionChecked,
+          detail::Make<ClearanceRule>};
 }
 
 }  // namespace stitchsim::verify

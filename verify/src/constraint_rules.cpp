@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "detail/rule_registry.h"
 #include "stitchsim/scene/footprint.h"
 #include "stitchsim/verify/rule.h"
 
@@ -129,8 +130,12 @@ class ConstraintCrossingRule final : public Rule {
 
 }  // namespace
 
-std::unique_ptr<Rule> MakeConstraintCrossingRule(const RuleContext& ctx) {
-  return std::make_unique<ConstraintCrossingRule>(ctx);
+RuleEntry ConstraintCrossingRuleEntry() {
+  // Only a scene with constraints.
+  return {
+      "constraint.crossing", CloseUpFamily::kConstraint,
+      [](const RuleContext& ctx) { return RulePresence::RunsIf(!ctx.scene->constraints.empty()); },
+      detail::Make<ConstraintCrossingRule>};
 }
 
 }  // namespace stitchsim::verify

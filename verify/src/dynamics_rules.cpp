@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "detail/rule_registry.h"
 #include "detail/text_format.h"
 #include "stitchsim/verify/rule.h"
 
@@ -202,17 +203,42 @@ class TrackingRule final : public Rule {
 
 }  // namespace
 
-std::unique_ptr<Rule> MakeAccelerationRule(const RuleContext& ctx) {
-  return std::make_unique<AccelerationRule>(ctx);
+namespace {
+
+// kin.acceleration and kin.torque read the timed trajectory.
+RulePresence RunsWhenTimed(const RuleContext& ctx) {
+  return ctx.cell->timed ? RulePresence::Runs()
+                         : RulePresence::Skipped("the trace has no timed trajectory");
 }
-std::unique_ptr<Rule> MakeTorqueRule(const RuleContext& ctx) {
-  return std::make_unique<TorqueRule>(ctx);
+
+}  // namespace
+
+RuleEntry AccelerationRuleEntry() {
+  return {"kin.acceleration", CloseUpFamily::kKinematics, RunsWhenTimed,
+          detail::Make<AccelerationRule>};
 }
-std::unique_ptr<Rule> MakePayloadRule(const RuleContext& ctx) {
-  return std::make_unique<PayloadRule>(ctx);
+RuleEntry TorqueRuleEntry() {
+  return {"kin.torque", CloseUpFamily::kKinematics, RunsWhenTimed, detail::Make<TorqueRule>};
 }
-std::unique_ptr<Rule> MakeTrackingRule(const RuleContext& ctx) {
-  return std::make_unique<TrackingRule>(ctx);
+RuleEntry PayloadRuleEntry() {
+  // kin.payload needs the head's mass (head spec `inertial:`) and the arm's load diagram.
+  return {"kin.payload", CloseUpFamily::kKinematics,
+          [](const RuleContext& ctx) {
+            if (!ctx.scene->head.inertial) {
+              return RulePresence::Skipped("the head spec gives no mass (`inertial:`)");
+            }
+            if (ctx.cell->payload_rated_kg <= 0.0) {
+              return RulePresence::Skipped("the cell model gives no load diagram");
+            }
+            return RulePresence::Runs();
+          },
+          detail::Make<PayloadRule>};
+}
+RuleEntry TrackingRuleEntry() {
+  // Only with --dynamics (the trace carries the servos' actual joints).
+  return {"dyn.tracking", CloseUpFamily::kKinematics,
+          [](const RuleContext& ctx) { return RulePresence::RunsIf(ctx.cell->dynamic); },
+          detail::Make<TrackingRule>};
 }
 
 }  // namespace stitchsim::verify

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "detail/carry_bytes.h"
+#include "detail/rule_registry.h"
 #include "detail/text_format.h"
 #include "stitchsim/verify/rule.h"
 
@@ -211,16 +212,24 @@ class JointSpeedRule final : public Rule {
 
 }  // namespace
 
-std::unique_ptr<Rule> MakeReachRule() { return std::make_unique<ReachRule>(); }
-std::unique_ptr<Rule> MakeJointLimitRule(const RuleContext& ctx) {
-  return std::make_unique<JointLimitRule>(ctx);
+RuleEntry ReachRuleEntry() {
+  return {"kin.reach", CloseUpFamily::kKinematics, detail::RunsAlways, detail::Make<ReachRule>};
 }
-std::unique_ptr<Rule> MakeSingularityRule(const RuleContext& ctx) {
-  return std::make_unique<SingularityRule>(ctx);
+RuleEntry JointLimitRuleEntry() {
+  return {"kin.joint_limit", CloseUpFamily::kKinematics, detail::RunsAlways,
+          detail::Make<JointLimitRule>};
 }
-std::unique_ptr<Rule> MakeConfigFlipRule() { return std::make_unique<ConfigFlipRule>(); }
-std::unique_ptr<Rule> MakeJointSpeedRule(const RuleContext& ctx) {
-  return std::make_unique<JointSpeedRule>(ctx);
+RuleEntry SingularityRuleEntry() {
+  return {"kin.singularity", CloseUpFamily::kKinematics, detail::RunsAlways,
+          detail::Make<SingularityRule>};
+}
+RuleEntry ConfigFlipRuleEntry() {
+  return {"kin.config_flip", CloseUpFamily::kKinematics, detail::RunsAlways,
+          detail::Make<ConfigFlipRule>};
+}
+RuleEntry JointSpeedRuleEntry() {
+  return {"kin.joint_speed", CloseUpFamily::kKinematics, detail::RunsAlways,
+          detail::Make<JointSpeedRule>};
 }
 
 }  // namespace stitchsim::verify

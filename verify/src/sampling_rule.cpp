@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "detail/rule_registry.h"
 #include "stitchsim/common/limits.h"
 #include "stitchsim/verify/rule.h"
 
@@ -34,6 +35,9 @@ class LineSamplingRule final : public Rule {
 
 }  // namespace
 
-std::unique_ptr<Rule> MakeLineSamplingRule() { return std::make_unique<LineSamplingRule>(); }
+RuleEntry LineSamplingRuleEntry() {
+  return {"program.line_sampling", CloseUpFamily::kNone, detail::RunsAlways,
+          detail::Make<LineSamplingRule>};
+}
 
 }  // namespace stitchsim::verify

@@ -1,6 +1,7 @@
 #pragma once
 // The extension point of the verifier: a Rule has an id, limits from the head/scene spec,
-// and checks over the trace. Adding a rule = one new class + one line in MakeRules.
+// and checks over the trace. Adding a rule = one new class and its registry entry in its own
+// file + one line in the registry (verify/src/rules.cpp; rule_registry.h).
 
 #include <Eigen/Geometry>
 #include <deque>
@@ -51,6 +52,20 @@ struct RuleContext {
   std::optional<long> declared_stitches = std::nullopt;
 };
 
+/// What a rule's close-up snapshot frames (docs/report-format.md, "Snapshots"; run/close_up.h
+/// plans one per family). Declared by the rule's registry entry (rule_registry.h).
+enum class CloseUpFamily {
+  kNone,        ///< no close-up (program.*, afp.coverage, afp.gap, afp.overlap)
+  kCollision,   ///< the two bodies in contact
+  kNeedle,      ///< the needles, the drift of their shafts
+  kStitch,      ///< the needles, the preform as a section
+  kKinematics,  ///< the whole arm, the finding's joint's link
+  kConstraint,  ///< from above, the constraint and its crossings
+  kAfp,         ///< the head from the side of the roller
+};
+/// The family's name in snapshots.json ("collision", "needle", ...); "" for kNone.
+const char* CloseUpFamilyName(CloseUpFamily family);
+
 /// Points a rule asks the overview snapshot to draw, by label ("afp_laid", "afp_gap", ...),
 /// part frame, mm; bounded (thinned evenly) by the rule.
 struct DrawnPoints {
@@ -81,6 +96,9 @@ class Rule {
   const ValueSeries& Series() const { return series_; }
   /// The series' values must stay above the limits (collision.clearance, afp.steering_radius).
   bool LowerBound() const { return worst_is_smallest_; }
+  /// What the rule's close-up snapshot frames (its registry entry's; kNone for a rule not
+  /// made by MakeRules).
+  CloseUpFamily CloseUp() const { return close_up_; }
 
   // Chunked runs (Verifier::Absorb, ResetAccumulators, Carry, SavePartial). A rule's state is
   // config (limits, from the context), accumulators (the summary, its findings, the worst
@@ -169,6 +187,8 @@ class Rule {
 
  private:
   friend class Verifier;  // marks saw_input_
+  // Sets close_up_ from the rule's registry entry.
+  friend std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx);
 
   /// A line that had a finding: its severity so far and the finding's index (npos when the
   /// finding was not kept, past kMaxFindingsPerRule).
@@ -198,12 +218,14 @@ class Rule {
   /// Set by the verifier while OnWindow runs: the window's entry tool pose (part frame, mm).
   const Eigen::Isometry3d* window_entry_ = nullptr;
   std::optional<Eigen::Isometry3d> worst_entry_tool_;  ///< see WorstEntryTool
+  CloseUpFamily close_up_ = CloseUpFamily::kNone;      ///< config: see CloseUp
 };
 
-/// Every rule, in report order, with limits from `ctx`.
+/// Every rule that runs in `ctx` (rule_registry.h: RulePresence::kRuns), in report order, with
+/// limits from `ctx`.
 std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx);
-/// The rules MakeRules leaves out on purpose (no collision world: the collision.* rules),
-/// in registry order, with the reason.
+/// The rules MakeRules leaves out on purpose (RulePresence::kSkipped: no collision world, no
+/// timed trajectory, no payload data), in registry order, with the reason.
 std::vector<SkippedRule> SkippedRules(const RuleContext& ctx);
 
 }  // namespace stitchsim::verify

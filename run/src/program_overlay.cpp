@@ -1,14 +1,16 @@
 // Stitch points of a programme for drawing: the end point of every line that advances the
 // drive axis, in the part frame.
+#include "stitchsim/run/program_overlay.h"
+
 #include <fstream>
 
-#include "commands.h"
+#include "stitchsim/common/files.h"
 #include "stitchsim/common/thinned.h"
 #include "stitchsim/program/modal_state.h"
 #include "stitchsim/program/reader.h"
 #include "stitchsim/program/tool_pose.h"
 
-namespace stitchsim::app {
+namespace stitchsim::run {
 namespace {
 
 // More points than a picture can show are thinned (every other one dropped, then every
@@ -18,13 +20,16 @@ constexpr std::size_t kMaxOverlayPoints = 3000;
 
 }  // namespace
 
-std::optional<ProgramOverlay> ProgramStitchOverlay(const LoadedScene& /*ls*/,
-                                                   const std::string& program_file) {
-  if (!ProgramInputOk(program_file)) return std::nullopt;
+ProgramOverlay ProgramStitchOverlay(const std::string& program_file, DiagnosticSink& diagnostics) {
+  ProgramOverlay out;
+  if (std::string err = CheckStreamInput(program_file); !err.empty()) {
+    out.status = Status::Error("io-missing-file", err);
+    return out;
+  }
   std::ifstream in(program_file, std::ios::binary);
   if (!in) {
-    PrintError("io-missing-file", "cannot open programme " + program_file);
-    return std::nullopt;
+    out.status = Status::Error("io-missing-file", "cannot open programme " + program_file);
+    return out;
   }
   const program::Dialect& dialect = program::Dialect::Default();
   const geom::EulerOrder order = program::EulerOrderOf(dialect);
@@ -32,7 +37,6 @@ std::optional<ProgramOverlay> ProgramStitchOverlay(const LoadedScene& /*ls*/,
   program::ProgramReader reader(in, dialect, program_file, sink);
   program::ModalState state(dialect, program_file, sink);
   program::Block block;
-  ProgramOverlay out;
   Thinned<Eigen::Vector3d> points(kMaxOverlayPoints);
   while (reader.Next(block)) {
     const program::Step& step = state.Update(block);
@@ -49,12 +53,14 @@ std::optional<ProgramOverlay> ProgramStitchOverlay(const LoadedScene& /*ls*/,
     if (points.Items().empty() || (u_now && (!u_before || *u_now != *u_before))) points.Add(p);
   }
   out.stitch_points_part_mm = std::move(points.Items());
-  if (PrintDiagnostics(sink)) return std::nullopt;
-  if (out.stitch_points_part_mm.empty()) {
-    PrintError("program-empty", program_file + ": the programme has no moves to draw");
-    return std::nullopt;
+  for (const Diagnostic& d : sink.Diagnostics()) diagnostics.Report(d);
+  if (sink.HasErrors()) {
+    out.status = Status::InSink();
+  } else if (out.stitch_points_part_mm.empty()) {
+    out.status =
+        Status::Error("program-empty", program_file + ": the programme has no moves to draw");
   }
   return out;
 }
 
-}  // namespace stitchsim::app
+}  // namespace stitchsim::run

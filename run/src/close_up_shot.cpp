@@ -1,13 +1,16 @@
-#include "snapshot_shot.h"
-
+// The camera work of a close-up (run/close_up.h): the direction that shows the subjects
+// largest and least hidden, then whatever still hides them made see-through; and the posing
+// and drawing helpers the planners share (detail/close_up_draw.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
 
+#include "detail/close_up_draw.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/sim/robot_model.h"
 
-namespace stitchsim::app {
+namespace stitchsim::run {
 namespace {
 
 // Probe pictures are small: only proportions matter when comparing directions.
@@ -41,7 +44,7 @@ std::vector<int> SlotSubjects(const render::Segmentation& seg, const CloseUpPlan
 }
 
 // Per pixel: the subject index or a kBackground / kOtherGeom / kOtherThing class.
-std::vector<int> Classify(const render::Segmentation& seg, const CloseUpPlan& plan) {
+std::vector<int> ClassifyPixels(const render::Segmentation& seg, const CloseUpPlan& plan) {
   const std::vector<int> slots = SlotSubjects(seg, plan);
   std::vector<int> out(seg.label.size(), kBackground);
   for (std::size_t p = 0; p < seg.label.size(); ++p) {
@@ -88,7 +91,7 @@ ViewCount CountView(render::OffscreenRenderer& r, mjData* data, const mjModel& m
   c.visible.assign(n, 0);
   c.hidden_each.assign(n, 0);
   const render::Segmentation full = r.RenderSegmentation(data, view, plan.overlays, style);
-  const std::vector<int> full_class = Classify(full, plan);
+  const std::vector<int> full_class = ClassifyPixels(full, plan);
   for (std::size_t i = 0; i < n; ++i) {
     const render::Segmentation solo =
         r.RenderSegmentation(data, view, plan.overlays, AloneStyle(model, plan, i));
@@ -111,7 +114,7 @@ ViewCount CountView(render::OffscreenRenderer& r, mjData* data, const mjModel& m
 
 // Larger subjects (the smallest counts) and fewer of their pixels hidden score higher; a
 // subject behind another one (drawn see-through) counts at a third.
-double Score(const ViewCount& c) {
+double ViewScore(const ViewCount& c) {
   if (c.alone.empty()) return 0.0;
   double smallest = 1e18;
   for (std::size_t i = 0; i < c.alone.size(); ++i) {
@@ -122,12 +125,18 @@ double Score(const ViewCount& c) {
   return smallest * (1.0 - 0.8 * hidden);
 }
 
+// The close-ups' camera distance is worked out with pi to 15 digits, as it always was: kPi
+// moves snapshots.json's distance_m in its last digit (the pictures stay the same).
+constexpr double kPiTo15Digits = 3.14159265358979;
+
 double FrameDistance(const mjModel& model, double radius_m) {
-  const double half_fovy = 0.5 * model.vis.global.fovy * 3.14159265358979 / 180.0;
+  const double half_fovy = 0.5 * model.vis.global.fovy * kPiTo15Digits / 180.0;
   return radius_m / std::tan(half_fovy) * 1.05;
 }
 
 }  // namespace
+
+namespace close_up {
 
 bool PoseModel(const mjModel& model, mjData& data, const trace::JointVector& joints,
                std::string& error) {
@@ -175,7 +184,6 @@ void Recolour(CloseUpPlan& plan, const std::vector<int>& geoms, const Rgba& rgba
 }
 
 std::vector<Eigen::Vector3d> Ring(int azimuths, std::initializer_list<double> elevations_deg) {
-  constexpr double kPi = 3.14159265358979323846;
   std::vector<Eigen::Vector3d> out;
   for (double el : elevations_deg) {
     for (int k = 0; k < azimuths; ++k) {
@@ -192,6 +200,8 @@ std::string Fmt(const char* format, double v) {
   return buf;
 }
 
+}  // namespace close_up
+
 bool ShootCloseUp(mjModel* model, mjData* data, const CloseUpPlan& plan, int width, int height,
                   Shot& shot, std::string& error) {
   const double distance = FrameDistance(*model, plan.radius_m);
@@ -205,7 +215,7 @@ bool ShootCloseUp(mjModel* model, mjData* data, const CloseUpPlan& plan, int wid
     for (std::size_t i = 0; i < directions.size(); ++i) {
       const render::CameraView v = render::LookAlong(plan.centre_m, directions[i], distance);
       // Earlier directions are preferred on a near tie.
-      const double score = Score(CountView(*probe, data, *model, plan, v, plan.style)) *
+      const double score = ViewScore(CountView(*probe, data, *model, plan, v, plan.style)) *
                            (1.0 - 0.03 * static_cast<double>(i));
       if (score > best_score) {
         best_score = score;
@@ -243,4 +253,4 @@ bool ShootCloseUp(mjModel* model, mjData* data, const CloseUpPlan& plan, int wid
   return true;
 }
 
-}  // namespace stitchsim::app
+}  // namespace stitchsim::run

@@ -3,15 +3,15 @@
 // docs/report-format.md, "Snapshots").
 #include <filesystem>
 
-#include "commands.h"
 #include "stitchsim/render/renderer.h"
+#include "stitchsim/run/snapshots.h"
 #include "stitchsim/verify/afp_coverage_image.h"
 
-namespace stitchsim::app {
+namespace stitchsim::run {
 namespace {
 
 // The colour key, by verify::CoverageState.
-constexpr std::uint8_t kColours[][3] = {
+constexpr std::uint8_t kCoverageColours[][3] = {
     {255, 255, 255},  // nothing
     {60, 110, 200},   // laid tows: blue
     {220, 30, 30},    // gap (bare inside the ply): red
@@ -22,24 +22,23 @@ constexpr std::uint8_t kColours[][3] = {
 
 }  // namespace
 
-int WriteAfpCoverageSnapshots(const verify::Verifier& verifier, const std::string& dir) {
+Status WriteAfpCoverageSnapshots(const verify::Verifier& verifier, const std::string& dir) {
   for (const verify::CoverageImage& img : verify::CoverageImages(verifier)) {
     render::Image out;
     out.width = img.width;
     out.height = img.height;
     out.rgb.reserve(img.pixels.size() * 3);
     for (const verify::CoverageState s : img.pixels) {
-      const auto* c = kColours[static_cast<int>(s)];
+      const auto* c = kCoverageColours[static_cast<int>(s)];
       out.rgb.insert(out.rgb.end(), c, c + 3);
     }
     const auto path =
         std::filesystem::path(dir) / ("coverage_ply" + std::to_string(img.ply) + ".png");
     if (std::string err = render::WritePng(path, out); !err.empty()) {
-      PrintError("io-write", "cannot write " + path.string() + ": " + err);
-      return kExitBadInput;
+      return Status::Error("io-write", "cannot write " + path.string() + ": " + err);
     }
   }
-  return kExitOk;
+  return Status::Ok();
 }
 
-}  // namespace stitchsim::app
+}  // namespace stitchsim::run

@@ -2,13 +2,13 @@
 #include <algorithm>
 #include <cmath>
 
-#include "snapshot_families.h"
+#include "detail/close_up_draw.h"
 #include "stitchsim/render/scene_model.h"
 
-namespace stitchsim::app {
+namespace stitchsim::run::close_up {
 namespace {
 
-using namespace shot_colours;  // NOLINT: the palette
+using namespace colours;  // NOLINT: the palette
 
 Eigen::Vector3d BodyPos(const mjData& d, int body) {
   return {d.xpos[3 * body], d.xpos[3 * body + 1], d.xpos[3 * body + 2]};
@@ -37,13 +37,13 @@ void Frame(const std::vector<Eigen::Vector3d>& points, double min_m, CloseUpPlan
 }
 
 // The tool point of a sample in the world (m), the model posed at the sample.
-Eigen::Vector3d ToolPoint(const SnapshotContext& ctx, const trace::TraceSample& s) {
+Eigen::Vector3d ToolPoint(const CloseUpContext& ctx, const trace::TraceSample& s) {
   return PartWorld(*ctx.model, *ctx.data) * (s.tool_part.translation() / 1000.0);
 }
 
 }  // namespace
 
-bool PlanKinematics(const SnapshotContext& ctx, const verify::Rule& rule,
+bool PlanKinematics(const CloseUpContext& ctx, const verify::Rule& rule,
                     const trace::TraceSample& s, CloseUpPlan& plan) {
   const mjModel& m = *ctx.model;
   const mjData& d = *ctx.data;
@@ -89,7 +89,7 @@ bool PlanKinematics(const SnapshotContext& ctx, const verify::Rule& rule,
   return !plan.subjects.front().geoms.empty();
 }
 
-bool PlanConstraint(const SnapshotContext& ctx, const verify::Rule& rule,
+bool PlanConstraint(const CloseUpContext& ctx, const verify::Rule& rule,
                     const trace::TraceSample* s, CloseUpPlan& plan) {
   const mjModel& m = *ctx.model;
   const verify::Finding* f = FocusFinding(rule);
@@ -151,7 +151,7 @@ bool PlanConstraint(const SnapshotContext& ctx, const verify::Rule& rule,
   return true;
 }
 
-bool PlanHead(const SnapshotContext& ctx, const trace::TraceSample& s, CloseUpPlan& plan) {
+bool PlanHead(const CloseUpContext& ctx, const trace::TraceSample& s, CloseUpPlan& plan) {
   const mjModel& m = *ctx.model;
   const Eigen::Isometry3d tool = PartWorld(m, *ctx.data) * ToMetres(s.tool_part);
   plan.centre_m = tool * Eigen::Vector3d(0, 0, 0.05);
@@ -178,4 +178,4 @@ bool PlanHead(const SnapshotContext& ctx, const trace::TraceSample& s, CloseUpPl
   return true;
 }
 
-}  // namespace stitchsim::app
+}  // namespace stitchsim::run::close_up

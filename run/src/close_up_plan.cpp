@@ -1,17 +1,19 @@
-#include "snapshot_families.h"
-
+// What a close-up shows, per rule family (run/close_up.h): collisions, needles and stitches
+// here; the arm, constraint crossings and the head in close_up_arm.cpp.
 #include <algorithm>
 #include <cmath>
 #include <optional>
 
-#include "commands.h"
+#include "detail/close_up_draw.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/render/scene_model.h"
+#include "stitchsim/run/start_pose.h"
 
-namespace stitchsim::app {
+namespace stitchsim::run {
+namespace close_up {
 namespace {
 
-using namespace shot_colours;  // NOLINT: the palette
-constexpr double kPi = 3.14159265358979323846;
+using namespace colours;  // NOLINT: the palette
 
 // The farthest a body reaches from `from` (world, m): its geoms' centres plus bounding radii.
 double Reach(const mjModel& m, const mjData& d, const std::vector<int>& geoms,
@@ -68,14 +70,14 @@ std::vector<Eigen::Vector3d> StraightestTangents(const geom::Surface& surface,
 }
 
 // Joints for the picture: the sample's, else a solved pose at its tool point.
-trace::JointVector PictureJoints(const SnapshotContext& ctx, const trace::TraceSample& s) {
+trace::JointVector PictureJoints(const CloseUpContext& ctx, const trace::TraceSample& s) {
   if (s.has_joints) return s.joints;
   return SolveStartPose(*ctx.ls, s.tool_part).joints;
 }
 
 // Collision rules: the two bodies of the deepest contact (or the closest pair).
-bool PlanCollision(const SnapshotContext& ctx, const verify::Rule& rule,
-                   const trace::TraceSample& s, CloseUpPlan& plan) {
+bool PlanCollision(const CloseUpContext& ctx, const verify::Rule& rule, const trace::TraceSample& s,
+                   CloseUpPlan& plan) {
   const mjModel& m = *ctx.model;
   const mjData& d = *ctx.data;
   const std::string& id = rule.Summary().id;
@@ -176,7 +178,7 @@ std::vector<int> HeadGeomsNamed(const mjModel& m, const std::string& part_of_nam
 }
 
 // The preform as a section across the stitch line: its top and the mold surface under it.
-void AddSection(const SnapshotContext& ctx, const Eigen::Isometry3d& tool_mm,
+void AddSection(const CloseUpContext& ctx, const Eigen::Isometry3d& tool_mm,
                 const Eigen::Vector3d& across, const Eigen::Isometry3d& part_world,
                 double half_width_mm, CloseUpPlan& plan) {
   const scene::Scene& scene = *ctx.ls->scene;
@@ -196,7 +198,7 @@ void AddSection(const SnapshotContext& ctx, const Eigen::Isometry3d& tool_mm,
 // Arrows from where each needle's shaft points went in to where they are at the worst sample
 // after the walk (the side-force proxy's drift, process/stitch_cycle.h), magnified; part
 // frame mm in, world out.
-Eigen::Vector3d AddDrift(const SnapshotContext& ctx, const Eigen::Isometry3d& entry_mm,
+Eigen::Vector3d AddDrift(const CloseUpContext& ctx, const Eigen::Isometry3d& entry_mm,
                          const Eigen::Isometry3d& now_mm, const Eigen::Isometry3d& part_world,
                          CloseUpPlan& plan) {
   // The walk moves the needles along head y, cancelling the tool point's travel along it.
@@ -237,7 +239,7 @@ Eigen::Vector3d AddDrift(const SnapshotContext& ctx, const Eigen::Isometry3d& en
 }
 
 // Needle and stitch rules: the needles and the presser foot, the preform as a section.
-bool PlanNeedles(const SnapshotContext& ctx, const verify::Rule& rule, const trace::TraceSample& s,
+bool PlanNeedles(const CloseUpContext& ctx, const verify::Rule& rule, const trace::TraceSample& s,
                  CloseUpPlan& plan) {
   const mjModel& m = *ctx.model;
   const Eigen::Isometry3d part = PartWorld(m, *ctx.data);
@@ -297,18 +299,7 @@ bool PlanNeedles(const SnapshotContext& ctx, const verify::Rule& rule, const tra
 }
 
 }  // namespace
-
-std::string SnapshotFamily(const std::string& id) {
-  auto starts = [&](const char* p) { return id.rfind(p, 0) == 0; };
-  if (starts("collision.")) return "collision";
-  if (starts("needle.")) return "needle";
-  if (starts("stitch.")) return "stitch";
-  if (starts("kin.") || starts("dyn.")) return "kinematics";
-  if (starts("constraint.")) return "constraint";
-  if (id == "afp.compaction" || id == "afp.steering_radius") return "afp";
-  if (starts("afp.") || starts("program.")) return "";
-  return "head";
-}
+}  // namespace close_up
 
 const verify::Finding* FocusFinding(const verify::Rule& rule) {
   const auto& f = rule.Summary().findings;
@@ -322,33 +313,34 @@ const verify::Finding* FocusFinding(const verify::Rule& rule) {
   return f.empty() ? nullptr : &f.front();
 }
 
-bool PlanCloseUp(const SnapshotContext& ctx, const verify::Rule& rule,
+bool PlanCloseUp(const CloseUpContext& ctx, const verify::Rule& rule,
                  std::optional<CloseUpPlan>& plan, std::string& error) {
   plan.reset();
-  const std::string family = SnapshotFamily(rule.Summary().id);
+  using verify::CloseUpFamily;
+  const CloseUpFamily family = rule.CloseUp();
   const auto& s = rule.WorstSample();
-  if (family.empty() || (!s && family != "constraint")) return true;
+  if (family == CloseUpFamily::kNone || (!s && family != CloseUpFamily::kConstraint)) return true;
   CloseUpPlan p;
   p.family = family;
   p.joints =
-      s ? PictureJoints(ctx, *s)
+      s ? close_up::PictureJoints(ctx, *s)
         : SolveStartPose(*ctx.ls, PathStartTool(*ctx.ls->scene, ctx.ls->scene->paths.front()))
               .joints;
-  if (!PoseModel(*ctx.model, *ctx.data, p.joints, error)) return false;
+  if (!close_up::PoseModel(*ctx.model, *ctx.data, p.joints, error)) return false;
   bool ok = false;
-  if (family == "collision") {
-    ok = PlanCollision(ctx, rule, *s, p);
-  } else if (family == "needle" || family == "stitch") {
-    ok = PlanNeedles(ctx, rule, *s, p);
-  } else if (family == "kinematics") {
-    ok = PlanKinematics(ctx, rule, *s, p);
-  } else if (family == "constraint") {
-    ok = PlanConstraint(ctx, rule, s ? &*s : nullptr, p);
+  if (family == CloseUpFamily::kCollision) {
+    ok = close_up::PlanCollision(ctx, rule, *s, p);
+  } else if (family == CloseUpFamily::kNeedle || family == CloseUpFamily::kStitch) {
+    ok = close_up::PlanNeedles(ctx, rule, *s, p);
+  } else if (family == CloseUpFamily::kKinematics) {
+    ok = close_up::PlanKinematics(ctx, rule, *s, p);
+  } else if (family == CloseUpFamily::kConstraint) {
+    ok = close_up::PlanConstraint(ctx, rule, s ? &*s : nullptr, p);
   }
   // A family plan that finds nothing to frame falls back to the head at the sample.
-  if (!ok && s) ok = PlanHead(ctx, *s, p);
+  if (!ok && s) ok = close_up::PlanHead(ctx, *s, p);
   if (ok) plan = std::move(p);
   return true;
 }
 
-}  // namespace stitchsim::app
+}  // namespace stitchsim::run

@@ -1,0 +1,14 @@
+#pragma once
+// Files embedded in the binary at build time (run/CMakeLists.txt): three.js and its orbit
+// controls from Debian's libjs-three, and the HTML report's template and script (run/html/).
+
+#include <string_view>
+
+namespace stitchsim::run {
+
+std::string_view ThreeJs();
+std::string_view OrbitControlsJs();
+std::string_view ReportTemplateHtml();
+std::string_view ReportJs();
+
+}  // namespace stitchsim::run

@@ -1,0 +1,39 @@
+#pragma once
+// What the rule files need to declare their registry entries (stitchsim/verify/rule_registry.h):
+// the state the factories of one MakeRules call share, and the common run conditions.
+
+#include <memory>
+#include <type_traits>
+
+#include "stitchsim/verify/rule_registry.h"
+
+namespace stitchsim::verify::detail {
+
+class LaidTows;
+
+/// Shared by the factories of one MakeRules call: the afp.* rules' one sampler of what the
+/// programme lays (afp_laid.h), made by the first of them.
+struct RuleMaking {
+  std::shared_ptr<LaidTows> laid;
+  /// The sampler, made on first use.
+  const std::shared_ptr<LaidTows>& Laid(const RuleContext& ctx);
+};
+
+/// The factory of a rule class constructed from the context (or from nothing).
+template <typename R>
+std::unique_ptr<Rule> Make(const RuleContext& ctx, RuleMaking& /*making*/) {
+  if constexpr (std::is_constructible_v<R, const RuleContext&>) {
+    return std::make_unique<R>(ctx);
+  } else {
+    return std::make_unique<R>();
+  }
+}
+
+/// Runs in every context.
+RulePresence RunsAlways(const RuleContext& ctx);
+/// Runs with a stitching head, absent with an AFP head.
+RulePresence RunsWhenStitching(const RuleContext& ctx);
+/// Runs with an AFP head, absent with a stitching head.
+RulePresence RunsWhenLaying(const RuleContext& ctx);
+
+}  // namespace stitchsim::verify::detail
