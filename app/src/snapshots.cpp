@@ -44,14 +44,14 @@ std::string Plural(long n, const char* one, const char* many) {
 
 // The stitches coloured by verdict and what the rules draw, over the cell (robot shown clear
 // above the start of the first path).
-RenderRequest OverviewRequest(const VerifySession& vs, const verify::Verifier& v) {
+RenderRequest OverviewRequest(const run::RunModel& vs, const verify::Verifier& v) {
   RenderRequest req;
   req.view = "part";
   req.width = kOverviewWidth;
   req.height = kOverviewHeight;
-  Eigen::Isometry3d approach = PathStartTool(*vs.ls.scene, vs.ls.scene->paths.front());
+  Eigen::Isometry3d approach = PathStartTool(*vs.loaded.scene, vs.loaded.scene->paths.front());
   approach.translation() += 400.0 * approach.linear().col(2);
-  const StartPose start = SolveStartPose(vs.ls, approach);
+  const StartPose start = SolveStartPose(vs.loaded, approach);
   req.joints = start.joints;
   req.tool_world_m = start.tool_world_m;
   RenderRequest::PointSet sets[3];
@@ -103,7 +103,7 @@ RenderRequest OverviewRequest(const VerifySession& vs, const verify::Verifier& v
   return req;
 }
 
-int WriteOverview(const VerifySession& vs, const verify::Verifier& v, const verify::Report& report,
+int WriteOverview(const run::RunModel& vs, const verify::Verifier& v, const verify::Report& report,
                   const render::SnapshotFonts& fonts, const fs::path& dir) {
   RenderRequest req = OverviewRequest(vs, v);
   req.output = (dir / "overview.png").string();
@@ -125,7 +125,7 @@ int WriteOverview(const VerifySession& vs, const verify::Verifier& v, const veri
     render::DrawTitleBar(img, fonts, title);
     render::DrawLegend(img, fonts, legend);
   };
-  return RunRenderScene(vs.ls, req);
+  return RunRenderScene(vs.loaded, req);
 }
 
 render::TitleBar CloseUpTitle(const verify::Rule& rule, const verify::Report& report) {
@@ -188,17 +188,17 @@ nlohmann::json ShotJson(const mjModel& m, const std::string& file, const verify:
 }
 
 // The close-ups of the rules with errors, into `manifest`.
-int WriteCloseUps(const VerifySession& vs, const verify::Verifier& v, const verify::Report& report,
+int WriteCloseUps(const run::RunModel& vs, const verify::Verifier& v, const verify::Report& report,
                   const render::SnapshotFonts& fonts, const fs::path& dir,
                   nlohmann::json& manifest) {
   DiagnosticSink sink;
-  render::MjModelPtr model = render::LoadSceneModel(*vs.ls.scene, sink);
+  render::MjModelPtr model = render::LoadSceneModel(*vs.loaded.scene, sink);
   if (PrintDiagnostics(sink) || !model) return kExitBadInput;
   // Close-ups come as near as a few centimetres (the needles): a near clipping plane of 1 cm.
   model->vis.map.znear = std::min<float>(model->vis.map.znear, 0.01 / model->stat.extent);
   render::MjDataPtr data(mj_makeData(model.get()));
-  SnapshotContext ctx{&vs.ls,      vs.model.get(), &vs.description,
-                      model.get(), data.get(),     &v.StitchMarks()};
+  SnapshotContext ctx{&vs.loaded,  vs.process.get(), &vs.description,
+                      model.get(), data.get(),       &v.StitchMarks()};
   for (const auto& rule : v.Rules()) {
     if (rule->Summary().errors == 0) continue;
     std::optional<CloseUpPlan> plan;
@@ -233,7 +233,7 @@ std::array<float, 4> DrawnColour(const std::string& label) {
   return {0.15f, 0.45f, 0.95f, 1.0f};
 }
 
-int WriteSnapshotFolder(const VerifySession& vs, const verify::Verifier& verifier,
+int WriteSnapshotFolder(const run::RunModel& vs, const verify::Verifier& verifier,
                         const verify::Report& report, const std::string& folder) {
   const fs::path dir(folder);
   std::error_code ec;

@@ -7,9 +7,9 @@
 #include <array>
 #include <string>
 
+#include "stitchsim/run/run_model.h"
 #include "stitchsim/verify/report.h"
 #include "stitchsim/verify/verifier.h"
-#include "verify_session.h"
 
 namespace stitchsim::app {
 
@@ -19,7 +19,7 @@ namespace stitchsim::app {
 /// HTML report: laid tows blue, gaps red, overlaps magenta.
 std::array<float, 4> DrawnColour(const std::string& label);
 
-int WriteSnapshotFolder(const VerifySession& vs, const verify::Verifier& verifier,
+int WriteSnapshotFolder(const run::RunModel& vs, const verify::Verifier& verifier,
                         const verify::Report& report, const std::string& dir);
 
 }  // namespace stitchsim::app

@@ -14,31 +14,19 @@
 #include <vector>
 
 #include "stitchsim/common/exact_sum.h"
-#include "stitchsim/process/stitch_cycle.h"
-#include "stitchsim/program/dialect.h"
 #include "stitchsim/run/pose_track.h"
+#include "stitchsim/run/run_model.h"
 #include "stitchsim/sim/chunk.h"
-#include "stitchsim/sim/collision.h"
-#include "stitchsim/sim/mujoco_cell.h"
-#include "stitchsim/sim/timing.h"
 #include "stitchsim/verify/verifier.h"
 
-namespace stitchsim::app {
+namespace stitchsim::run {
 
-/// What every chunk's run is made from (read-only while workers run: each run makes its own
-/// collision and MuJoCo state from the prototypes with Share()).
+/// What every chunk's run is made from (read-only while workers run: each chunk makes its own
+/// RunData from the model).
 struct ChunkSetup {
-  const program::Dialect* dialect = nullptr;
-  std::string program_path;
-  const sim::CellSetup* cell = nullptr;
-  const sim::RobotModel* robot = nullptr;
-  const process::ProcessModel* process = nullptr;
-  const sim::CollisionWorld* collision = nullptr;  ///< null: --no-collision
-  const sim::MujocoCell* mujoco = nullptr;
-  sim::ExecuteOptions execute;
-  sim::TimingOptions timing;
-  verify::RuleContext rules;
-  bool keep_stitch_marks = false;
+  const RunModel* model = nullptr;  ///< not owned; outlives the run
+  std::string program_path;         ///< the programme, reopened by each chunk
+  bool keep_stitch_marks = false;   ///< every stitch's verdict kept (the overview snapshot)
   /// Record line-end poses (verify --html): at most this many per chunk beside the lines its
   /// findings point at; 0 = none.
   std::size_t chunk_poses = 0;
@@ -64,7 +52,7 @@ struct ChunkResult {
   std::unique_ptr<verify::Verifier> verifier;  ///< the chunk's lines only
   ExactSum timed;                              ///< timed durations of the chunk's lines (s)
   long lines = 0;                              ///< motion lines counted
-  std::unique_ptr<run::PoseTrack> poses;       ///< ChunkSetup::chunk_poses > 0: the chunk's
+  std::unique_ptr<PoseTrack> poses;            ///< ChunkSetup::chunk_poses > 0: the chunk's
   bool ok = false;
   std::string error;  ///< when !ok
 };
@@ -86,7 +74,7 @@ class ChunkMerger {
   std::unique_ptr<verify::Verifier> TakeVerifier() { return std::move(verifier_); }
   const ExactSum& Timed() const { return timed_; }
   /// The taken chunks' poses, in order (empty without ChunkSetup::chunk_poses).
-  run::PoseTrack& Poses() { return poses_; }
+  PoseTrack& Poses() { return poses_; }
   const ChunkResult* Last() const { return last_ ? &*last_ : nullptr; }
   const BoundaryState& FirstStart() const { return first_start_; }
   /// The first boundary that did not match, and what differed (empty: none).
@@ -95,7 +83,7 @@ class ChunkMerger {
  private:
   std::unique_ptr<verify::Verifier> verifier_;
   ExactSum timed_;
-  run::PoseTrack poses_{std::numeric_limits<std::size_t>::max()};
+  PoseTrack poses_{std::numeric_limits<std::size_t>::max()};
   int taken_ = 0;
   std::optional<ChunkResult> last_;  ///< without its verifier (absorbed)
   BoundaryState first_start_;
@@ -107,7 +95,7 @@ struct ChunkedRun {
   std::string error;
   std::unique_ptr<verify::Verifier> verifier;  ///< the merged verifier
   ExactSum timed;
-  run::PoseTrack poses{std::numeric_limits<std::size_t>::max()};  ///< every chunk's, in order
+  PoseTrack poses{std::numeric_limits<std::size_t>::max()};  ///< every chunk's, in order
   int reruns = 0;
   std::string first_mismatch;  ///< what differed at the first chunk run again
   BoundaryState start, end;    ///< of the first and the last chunk run
@@ -121,4 +109,4 @@ ChunkedRun RunChunks(const ChunkSetup& setup, int jobs, bool starts_at_zero,
                      const std::function<std::optional<sim::Chunk>()>& next_chunk,
                      std::atomic<long>* lines_done, const std::function<void()>& tick);
 
-}  // namespace stitchsim::app
+}  // namespace stitchsim::run
