@@ -18,7 +18,8 @@
 
 namespace stitchsim::run {
 
-/// FNV-1a 64 of a file's bytes, streamed (0 when unreadable).
+/// An FNV-1a 64 style hash of a file's bytes, streamed (0 when unreadable); its offset
+/// basis differs from trace::Fnv1a64's (parts.cpp).
 std::uint64_t FileFnv(const std::string& path);
 
 /// Which shard (1..shards) a chunk belongs to: by where its run starts in the file of
