@@ -43,7 +43,7 @@ std::optional<verify::Report> Verified(const DiffArgs& a, const std::string& pro
   o.scene = a.scene;
   o.run.no_collision = a.no_collision;
   o.run.allow_mismatch = a.allow_mismatch;
-  o.jobs = a.jobs;
+  o.chunks.jobs = a.jobs;
   run::VerifyRun run;
   if (RunVerificationPrinted(o, a.quiet, run) != kExitOk) return std::nullopt;
   return std::move(run.report);

@@ -38,9 +38,10 @@ int RunVerificationPrinted(const run::VerifyRunOptions& o, bool quiet, run::Veri
                  "the chunk before ended with; first: %s)\n",
                  out.reruns, out.chunks, out.first_mismatch.c_str());
   }
-  if (out.status == run::RunStatus::kOk && o.shards > 0) {
-    std::fprintf(stderr, "verify: shard %d/%d: %zu of %d chunks, part written to %s\n", o.shard,
-                 o.shards, out.part_chunks, out.chunks, o.part.c_str());
+  if (out.status == run::RunStatus::kOk && o.chunks.shards > 0) {
+    std::fprintf(stderr, "verify: shard %d/%d: %zu of %d chunks, part written to %s\n",
+                 o.chunks.shard, o.chunks.shards, out.part_chunks, out.chunks,
+                 o.chunks.part.c_str());
   }
   return static_cast<int>(out.status);
 }

@@ -133,12 +133,7 @@ int RunVerify(const VerifyArgs& a) {
   o.keep_stitch_marks = !a.snapshots.empty() || !a.html.empty();
   o.record_poses = !a.html.empty();
   o.max_poses = HtmlLimits{}.max_poses;
-  o.jobs = a.jobs;
-  o.shard = shard;
-  o.shards = shards;
-  o.part = a.part;
-  o.chunk_lines = a.chunk_lines;
-  o.warm_lines = a.warm_lines;
+  o.chunks = {a.jobs, shard, shards, a.part, a.chunk_lines, a.warm_lines};
   run::VerifyRun run;
   const int rc = RunVerificationPrinted(o, a.quiet, run);
   if (rc != kExitOk || !a.shard.empty()) return rc;

@@ -55,7 +55,7 @@ class ChunkedVerify {
       : o_(o),
         model_(model),
         progress_(progress),
-        sharded_(o.shards > 0),
+        sharded_(o.plan.shards > 0),
         first_pass_data_(MakeRunData(model)) {
     std::error_code ec;
     file_bytes_ = std::filesystem::file_size(o.program, ec);
@@ -68,8 +68,8 @@ class ChunkedVerify {
     const bool cut = model_.loaded.scene->head.IsStitching() && (jobs > 1 || sharded_);
     return std::thread([this, &input, &diagnostics, cut] {
       sim::ScanOptions scan_options;
-      scan_options.chunk_lines = o_.chunk_lines;
-      scan_options.warm_lines = o_.warm_lines;
+      scan_options.chunk_lines = o_.plan.chunk_lines;
+      scan_options.warm_lines = o_.plan.warm_lines;
       scan_ = sim::ScanProgram(model_.cell, *model_.process, input, first_pass_data_.execute,
                                scan_options, cut, diagnostics,
                                [this](const sim::Chunk& c) { Found(c); });
@@ -92,7 +92,7 @@ class ChunkedVerify {
     setup.keep_stitch_marks = o_.stitch_marks;
     setup.chunk_poses = o_.chunk_poses;
     return RunChunks(
-        setup, jobs, !sharded_ || o_.shard == 1, [&] { return queue_.Pop(); }, &lines_done_,
+        setup, jobs, !sharded_ || o_.plan.shard == 1, [&] { return queue_.Pop(); }, &lines_done_,
         [this] { Tick(); });
   }
 
@@ -107,7 +107,7 @@ class ChunkedVerify {
     }
     const nlohmann::json j = PartJson(o_, model_, scan_, indices_,
                                       indices_.empty() ? nullptr : &run, FileFnv(o_.program));
-    if (std::string err = WriteFileAtomically(o_.part, j.dump() + "\n"); !err.empty()) {
+    if (std::string err = WriteFileAtomically(o_.plan.part, j.dump() + "\n"); !err.empty()) {
       ToolError(sink, "io-write", "--part: " + err);
       return RunStatus::kBadInput;
     }
@@ -118,7 +118,7 @@ class ChunkedVerify {
  private:
   // A chunk the first pass found: queued when it is this process's.
   void Found(const sim::Chunk& c) {
-    if (sharded_ && ShardOf(c, file_bytes_, o_.shards) != o_.shard) return;
+    if (sharded_ && ShardOf(c, file_bytes_, o_.plan.shards) != o_.plan.shard) return;
     indices_.push_back(c.index);
     queue_.Push(c);
     if (c.end_line > 0) {
@@ -153,7 +153,7 @@ ChunkedOutcome RunChunkedVerify(const ChunkedOptions& o, const RunModel& model,
                                 sim::ProgramInput& input, DiagnosticSink& diagnostics,
                                 const RunProgress& progress, DiagnosticSink& sink) {
   ChunkedOutcome out;
-  const int jobs = o.jobs > 0 ? o.jobs : DefaultJobs();
+  const int jobs = o.plan.jobs > 0 ? o.plan.jobs : DefaultJobs();
   ChunkedVerify cv(o, model, progress);
   std::thread first_pass = cv.StartFirstPass(input, jobs, diagnostics);
   ChunkedRun run = cv.Run(jobs);
@@ -163,7 +163,7 @@ ChunkedOutcome RunChunkedVerify(const ChunkedOptions& o, const RunModel& model,
   out.chunks = cv.Scan().chunks;
   out.reruns = run.reruns;
   out.first_mismatch = run.first_mismatch;
-  if (o.shards > 0) {
+  if (o.plan.shards > 0) {
     out.status = cv.WritePart(run, out, sink);
     return out;
   }

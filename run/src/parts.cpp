@@ -149,11 +149,11 @@ nlohmann::json PartJson(const ChunkedOptions& inv, const RunModel& model,
   j["scene_files"] = fp;
   j["no_collision"] = inv.no_collision;
   j["allow_mismatch"] = inv.allow_mismatch;
-  j["shard"] = inv.shard;
-  j["shards"] = inv.shards;
+  j["shard"] = inv.plan.shard;
+  j["shards"] = inv.plan.shards;
   j["chunks_total"] = scan.chunks;
-  j["chunk_lines"] = inv.chunk_lines;
-  j["warm_lines"] = inv.warm_lines;
+  j["chunk_lines"] = inv.plan.chunk_lines;
+  j["warm_lines"] = inv.plan.warm_lines;
   j["lines"] = scan.summary.lines;
   j["moves"] = scan.summary.moves;
   j["cycle_time_s"] = scan.summary.time_s;

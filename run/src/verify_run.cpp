@@ -152,18 +152,13 @@ RunStatus RunChunked(const VerifyRunOptions& a, const RunModel& m, sim::ProgramI
   o.allow_mismatch = a.run.allow_mismatch;
   o.stitch_marks = a.keep_stitch_marks;
   o.chunk_poses = a.record_poses ? 1024 : 0;
-  o.jobs = a.jobs;
-  o.shard = a.shard;
-  o.shards = a.shards;
-  o.part = a.part;
-  o.chunk_lines = a.chunk_lines;
-  o.warm_lines = a.warm_lines;
+  o.plan = a.chunks;
   ChunkedOutcome chunked = RunChunkedVerify(o, m, input, diagnostics, progress, sink);
   out.chunks = chunked.chunks;
   out.reruns = chunked.reruns;
   out.first_mismatch = chunked.first_mismatch;
   out.part_chunks = chunked.part_chunks;
-  if (chunked.status != RunStatus::kOk || a.shards > 0) return chunked.status;
+  if (chunked.status != RunStatus::kOk || a.chunks.shards > 0) return chunked.status;
   out.report = RunReport(a.program, a.scene, *m.loaded.scene, m.stitch_length_mm, chunked.summary);
   chunked.verifier->Finish(out.report);
   out.verifier = std::move(chunked.verifier);
@@ -203,7 +198,7 @@ VerifyRun RunVerification(const VerifyRunOptions& a, LoadedScene loaded,
   // Chunks reopen the programme by name: a regular file only.
   const bool serial =
       a.run.dynamics || !a.save_trace.empty() || !std::filesystem::is_regular_file(a.program);
-  if (serial && a.shards > 0) {
+  if (serial && a.chunks.shards > 0) {
     ToolError(sink, "cli-usage", "--shard needs the programme as a regular file");
     return out;
   }

@@ -25,8 +25,8 @@ VerifyRunOptions Options(const std::string& program) {
   VerifyRunOptions o;
   o.program = program;
   o.scene = ScenePath();
-  o.chunk_lines = 10;  // the programme's ~900 lines: a couple of dozen chunks
-  o.warm_lines = 8;
+  o.chunks.chunk_lines = 10;  // the programme's ~900 lines: a couple of dozen chunks
+  o.chunks.warm_lines = 8;
   return o;
 }
 
@@ -64,7 +64,7 @@ TEST_F(VerifyRunTest, SerialRunCountsEveryStitchOfTheProgramme) {
 TEST_F(VerifyRunTest, ChunkedRunsGiveTheSerialReport) {
   for (int jobs : {1, 2}) {
     VerifyRunOptions o = Options(program_);
-    o.jobs = jobs;
+    o.chunks.jobs = jobs;
     const VerifyRun chunked = Verified(o);
     // One job and no shards: not cut (the serial order in one chunk); two: cut.
     if (jobs == 1) {
@@ -82,14 +82,14 @@ TEST_F(VerifyRunTest, TwoShardsMergedGiveTheSerialReport) {
   int chunks = 0;
   for (int shard : {2, 1}) {  // either order
     VerifyRunOptions o = Options(program_);
-    o.shard = shard;
-    o.shards = 2;
-    o.part = dir_.File("part" + std::to_string(shard) + ".json");
+    o.chunks.shard = shard;
+    o.chunks.shards = 2;
+    o.chunks.part = dir_.File("part" + std::to_string(shard) + ".json");
     const VerifyRun run = Verified(o);
     EXPECT_EQ(run.report.rules.size(), 0u);  // a shard writes its part only
     chunks_in_parts += run.part_chunks;
     chunks = run.chunks;
-    parts.push_back(o.part);
+    parts.push_back(o.chunks.part);
   }
   EXPECT_GT(chunks, 5);
   EXPECT_EQ(chunks_in_parts, static_cast<std::size_t>(chunks));  // each chunk in one part
@@ -107,13 +107,13 @@ TEST_F(VerifyRunTest, TwoShardsMergedGiveTheSerialReport) {
 
 TEST_F(VerifyRunTest, PartFileRoundTrips) {
   VerifyRunOptions o = Options(program_);
-  o.shard = 1;
-  o.shards = 1;
-  o.part = dir_.File("whole.json");
+  o.chunks.shard = 1;
+  o.chunks.shards = 1;
+  o.chunks.part = dir_.File("whole.json");
   Verified(o);
   DiagnosticSink sink;
   Part part;
-  ASSERT_TRUE(ReadPart(o.part, part, sink)) << testing::AllDiagnostics(sink);
+  ASSERT_TRUE(ReadPart(o.chunks.part, part, sink)) << testing::AllDiagnostics(sink);
   EXPECT_EQ(part.j["program"], program_);
   EXPECT_EQ(part.j["stitch_length_mm"].get<double>(), serial_.model->stitch_length_mm);
   EXPECT_EQ(part.j["declared_stitches"].get<long>(), 840);

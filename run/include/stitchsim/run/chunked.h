@@ -36,8 +36,8 @@ struct ChunkSetup {
 /// executor takes the boundary line on, the timing sink's output side and the verifier's when
 /// the verifier takes it on.
 struct BoundaryState {
-  sim::ChunkCarry input;
-  std::string output;
+  sim::ChunkCarry input;  ///< the executor's and the timing sink's input side, as bytes
+  std::string output;     ///< the timing sink's output side then the verifier's, as bytes
   bool operator==(const BoundaryState&) const = default;
   std::string Hex() const;  ///< for partial files
   /// What differs from `other`, for people ("" when equal).
@@ -49,12 +49,12 @@ struct BoundaryState {
 struct ChunkResult {
   sim::Chunk chunk;          ///< its warm start may be an earlier chunk's (a re-run)
   BoundaryState start, end;  ///< at chunk.first_line and chunk.end_line
-  std::unique_ptr<verify::Verifier> verifier;  ///< the chunk's lines only
-  ExactSum timed;                              ///< timed durations of the chunk's lines (s)
+  std::unique_ptr<verify::Verifier> verifier;  ///< owned; the chunk's lines only
+  ExactSum timed;                              ///< timed durations of the chunk's lines, s
   long lines = 0;                              ///< motion lines counted
-  std::unique_ptr<PoseTrack> poses;            ///< ChunkSetup::chunk_poses > 0: the chunk's
-  bool ok = false;
-  std::string error;  ///< when !ok
+  std::unique_ptr<PoseTrack> poses;            ///< owned; ChunkSetup::chunk_poses > 0: the chunk's
+  bool ok = false;                             ///< ran to its end line (or the programme's)
+  std::string error;                           ///< when !ok: the first diagnostic or exception
 };
 
 /// Runs one chunk (any thread). `lines_done` (if set) counts the lines it has verified.
@@ -90,13 +90,14 @@ class ChunkMerger {
   std::string first_mismatch_;
 };
 
+/// Every chunk run and merged in order (RunChunks).
 struct ChunkedRun {
-  bool ok = false;
-  std::string error;
-  std::unique_ptr<verify::Verifier> verifier;  ///< the merged verifier
-  ExactSum timed;
+  bool ok = false;                             ///< every chunk merged
+  std::string error;                           ///< when !ok: what failed (a bug or bad input)
+  std::unique_ptr<verify::Verifier> verifier;  ///< owned; the merged verifier, not finished
+  ExactSum timed;                              ///< timed durations of every chunk's lines, s
   PoseTrack poses{std::numeric_limits<std::size_t>::max()};  ///< every chunk's, in order
-  int reruns = 0;
+  int reruns = 0;                                            ///< chunks run again
   std::string first_mismatch;  ///< what differed at the first chunk run again
   BoundaryState start, end;    ///< of the first and the last chunk run
 };

@@ -22,6 +22,16 @@ namespace stitchsim::run {
 /// run's thread, `done` only grows. Null: never called.
 using RunProgress = std::function<void(double done, double total)>;
 
+/// How a programme is cut and shared out (verify --jobs, --shard, --part, --chunk-lines,
+/// --warm-lines).
+struct ChunkPlan {
+  int jobs = 0;               ///< worker threads; 0: the number of cores
+  int shard = 0, shards = 0;  ///< --shard I/N, 1 <= I <= N (0: the whole programme)
+  std::string part;           ///< --shard: the part file written
+  int chunk_lines = 16384;    ///< cut at the first safe point after this many lines
+  int warm_lines = 128;       ///< each chunk's warm-up, lines
+};
+
 /// A chunked verify run as its part file records it (report merge rebuilds the run from it).
 struct ChunkedOptions {
   std::string program;          ///< programme file (a regular file: chunks reopen it)
@@ -30,11 +40,7 @@ struct ChunkedOptions {
   bool allow_mismatch = false;  ///< as the model was made (a part records it)
   bool stitch_marks = false;    ///< keep every stitch's verdict (--snapshots' overview)
   std::size_t chunk_poses = 0;  ///< --html: line-end poses kept per chunk (0: none)
-  int jobs = 0;                 ///< worker threads; 0: the number of cores
-  int shard = 0, shards = 0;    ///< --shard I/N, 1 <= I <= N (0: the whole programme)
-  std::string part;             ///< --shard: the part file written
-  int chunk_lines = 16384;      ///< cut at the first safe point after this many lines
-  int warm_lines = 128;         ///< each chunk's warm-up, lines
+  ChunkPlan plan;               ///< the cut and the share
 };
 
 /// What the chunked run gives (whole programme) or wrote (a shard).

@@ -31,11 +31,7 @@ struct VerifyRunOptions {
   bool keep_stitch_marks = false;  ///< every stitch's verdict kept (the overview snapshot)
   bool record_poses = false;       ///< line-end poses kept (--html's slider)
   std::size_t max_poses = 0;       ///< record_poses: at most this many poses kept (serial run)
-  int jobs = 0;                    ///< worker threads; 0: the number of cores
-  int shard = 0, shards = 0;       ///< --shard I/N (1 <= I <= N) into `part`; 0: all
-  std::string part;                ///< --shard: the part file written
-  int chunk_lines = 16384;         ///< chunked run: cut after this many lines
-  int warm_lines = 128;            ///< chunked run: each chunk's warm-up, lines
+  ChunkPlan chunks;                ///< the chunked run's cut and share (a serial run: not used)
 };
 
 /// A finished run: the report (rules, counts, verdict filled) and what the snapshots read.
