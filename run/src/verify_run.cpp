@@ -38,24 +38,30 @@ bool HeaderFitsScene(const program::ProgramIdentity& id, const program::ProgramH
 }
 
 // Passes the trace on and counts the programme lines passed for the progress (the serial
-// run has no first pass: the total is unknown).
+// run has no first pass: the total is unknown), told every kProgressLines lines and at the end.
 class ProgressSink : public sim::TraceSink {
  public:
+  static constexpr int kProgressLines = 256;
   ProgressSink(sim::TraceSink& next, const RunProgress& progress)
       : next_(next), progress_(progress) {}
   void OnLine(const sim::LineRecord& line) override {
     next_.OnLine(line);
     if (line.source_line > passed_) {
       passed_ = line.source_line;
-      if (progress_) progress_(passed_, 0.0);
+      if (passed_ - told_ >= kProgressLines) Tell();
     }
   }
   void OnSample(const sim::TraceSample& s) override { next_.OnSample(s); }
+  void Tell() {
+    if (progress_ && passed_ > told_) progress_(passed_, 0.0);
+    told_ = passed_;
+  }
 
  private:
   sim::TraceSink& next_;
   const RunProgress& progress_;
   int passed_ = 0;  ///< programme lines passed
+  int told_ = 0;    ///< lines passed when the progress was last told
 };
 
 // Sends the trace to the verifier and, with a saved trace, to the trace file.
@@ -119,6 +125,7 @@ RunStatus RunSerial(const VerifyRunOptions& a, const RunModel& m, sim::ProgramIn
   const auto started = std::chrono::steady_clock::now();
   const sim::ExecutionSummary run =
       sim::ExecuteProgram(m.cell, *m.process, input, data.execute, diagnostics, progress_sink);
+  progress_sink.Tell();
   if (Forward(diagnostics, sink) || !run.ok) return RunStatus::kBadInput;
   timing.Finish();
   if (physics) {
