@@ -30,16 +30,6 @@ void AddSequenceCommand(CLI::App& app, int& exit_code);
 /// `diff` (diff_cmd.cpp): two programmes verified and their reports compared.
 void AddDiffCommand(CLI::App& app, int& exit_code);
 
-/// Fingerprints of the files a run on `scene` depends on (scene, head spec, cell and head
-/// models), for a saved trace: a recheck refuses a trace whose files changed.
-std::vector<trace::FileFingerprint> SceneFingerprints(const scene::Scene& scene);
-/// A report's header for a run of `program_file` on `scene` (read from `scene_file`).
-verify::Report RunReport(const std::string& program_file, const std::string& scene_file,
-                         const scene::Scene& scene, double stitch_length_mm,
-                         const trace::TraceFileSummary& run);
-/// Writes the JSON and JUnit reports (those asked for; whole or not at all, as a set) and
-/// prints the text report; kExitOk, or kExitBadInput (printed) when a file cannot be written.
-int WriteReports(const verify::Report& report, const std::string& json, const std::string& junit);
 /// Prints a run function's diagnostics, then its error as PrintError does; the exit code:
 /// kExitOk, kExitInternal for an "internal" error, else kExitBadInput.
 int PrintRunOutcome(const DiagnosticSink& sink, const run::Status& status);

@@ -14,10 +14,9 @@
 
 #include "cli_common.h"
 #include "cli_options.h"
-#include "commands.h"
 #include "stitchsim/common/files.h"
 #include "stitchsim/verify/report_diff.h"
-#include "verify_run.h"
+#include "verify_cli.h"
 
 namespace stitchsim::app {
 namespace {
@@ -38,16 +37,15 @@ struct DiffArgs {
 // One programme verified as `stitchsim verify` would (chunked for a file, serial for a pipe);
 // nullopt on bad input (diagnostics printed with the programme's file and line).
 std::optional<verify::Report> Verified(const DiffArgs& a, const std::string& program) {
-  VerifyRunOptions o;
+  run::VerifyRunOptions o;
   o.program = program;
   o.dialect = a.dialect;
   o.scene = a.scene;
-  o.no_collision = a.no_collision;
-  o.allow_mismatch = a.allow_mismatch;
-  o.quiet = a.quiet;
-  o.jobs = a.jobs;
-  VerifyRun run;
-  if (RunVerification(o, run) != kExitOk) return std::nullopt;
+  o.run.no_collision = a.no_collision;
+  o.run.allow_mismatch = a.allow_mismatch;
+  o.chunks.jobs = a.jobs;
+  run::VerifyRun run;
+  if (RunVerificationPrinted(o, a.quiet, run) != kExitOk) return std::nullopt;
   return std::move(run.report);
 }
 

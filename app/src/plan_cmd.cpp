@@ -7,24 +7,20 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <sstream>
 
-#include "afp_incline.h"
 #include "cli_common.h"
 #include "cli_options.h"
 #include "commands.h"
 #include "plan_progress.h"
 #include "stitchsim/common/files.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/planner/afp_planner.h"
 #include "stitchsim/planner/plan_status.h"
 #include "stitchsim/planner/raster_planner.h"
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/program/dialect.h"
-#ifdef STITCHSIM_HAVE_COLLISION
-#include "stitchsim/common/units.h"
-#include "stitchsim/sim/collision.h"
-#endif
+#include "stitchsim/run/incline_judge.h"
 
 namespace stitchsim::app {
 namespace {
@@ -151,14 +147,7 @@ int WriteAfpOutputs(const scene::Scene& scene, const planner::AfpPlan& plan, con
 }
 
 int RunPlanAfpAuto(const PlanAfpArgs& a, const scene::PathSpec* path,
-                   planner::AfpPlanOptions options) {
-#ifdef STITCHSIM_HAVE_COLLISION
-  auto ls = LoadSceneAndRobot(a.scene);
-  if (!ls) return kExitBadInput;
-  DiagnosticSink sink;
-  auto world = sim::CollisionWorld::Create(*ls->scene, *ls->robot, sink);
-  if (PrintDiagnostics(sink) || !world) return kExitBadInput;
-  if (path != nullptr) path = ls->scene->FindPath(path->name);
+                   const planner::AfpPlanOptions& options) {
   planner::InclineSearchOptions search;
   search.max_deg = a.incline_max_deg;
   search.step_deg = a.incline_step_deg;
@@ -166,40 +155,31 @@ int RunPlanAfpAuto(const PlanAfpArgs& a, const scene::PathSpec* path,
   PlanProgressPrinter progress("plan afp", "inclinations", a.quiet);
   const double candidates = static_cast<double>(planner::InclineCandidates(search).size());
   int judged = 0;
-  const planner::InclineSearchResult r =
-      planner::SearchAfpIncline(*ls->scene, path, options, search, VerifyJudge(*ls, *world), sink,
-                                [&](const planner::InclineCandidate& c) {
-                                  progress.Update(++judged, candidates);
-                                  if (c.pass) return;
-                                  std::printf("incline %s deg: rejected: %s\n",
-                                              Deg(c.incline_rad).c_str(), c.failure.c_str());
-                                  std::fflush(stdout);
-                                });
+  DiagnosticSink sink;
+  const run::AutoInclineRun r = run::PlanAfpAutoIncline(
+      a.scene, SceneLoadOptions(),
+      path != nullptr ? std::optional<std::string>(path->name) : std::nullopt, options, search,
+      [&](const planner::InclineCandidate& c) {
+        progress.Update(++judged, candidates);
+        if (c.pass) return;
+        std::printf("incline %s deg: rejected: %s\n", Deg(c.incline_rad).c_str(),
+                    c.failure.c_str());
+        std::fflush(stdout);
+      },
+      sink);
   progress.Finish();
-  if (PrintDiagnostics(sink)) return kExitBadInput;
-  if (!r.error.empty()) {
-    PrintError("plan-incline-check", "--incline auto: " + r.error);
-    return kExitBadInput;
-  }
-  if (!r.plan) {
-    std::map<std::string, int> by_rule;  // first failing rule -> candidates
-    for (const auto& c : r.candidates) {
-      std::string rule = c.failure.substr(0, c.failure.find(' '));
-      if (!rule.empty() && rule.back() == ':') rule.pop_back();
-      ++by_rule[rule];
-    }
-    std::string why;
-    for (const auto& [rule, n] : by_rule) {
-      why += (why.empty() ? "" : ", ") + rule + " on " + std::to_string(n);
-    }
+  PrintDiagnostics(sink);
+  if (r.status != run::RunStatus::kOk) return kExitBadInput;
+  if (!r.search.plan) {
     std::printf(
         "error[plan-afp-no-clear-incline]: no inclination within +-%.3f deg gives a programme "
         "that verifies with every rule (%zu tried; first failure: %s)\n",
-        a.incline_max_deg, r.candidates.size(), why.c_str());
+        a.incline_max_deg, r.search.candidates.size(),
+        run::FailuresByRule(r.search.candidates).c_str());
     return kExitFindings;
   }
-  const planner::AfpPlan& plan = *r.plan;
-  const planner::InclineCandidate& won = r.candidates.back();
+  const planner::AfpPlan& plan = *r.search.plan;
+  const planner::InclineCandidate& won = r.search.candidates.back();
   std::string feeds = "feed as planned";
   if (won.slowed_moves > 0) {
     char buf[128];
@@ -213,16 +193,7 @@ int RunPlanAfpAuto(const PlanAfpArgs& a, const scene::PathSpec* path,
       "(B travel %s deg, C travel %s deg; %s)\n",
       Deg(plan.incline_rad).c_str(), Deg(plan.b_max_rad - plan.b_min_rad).c_str(),
       Deg(plan.c_max_rad - plan.c_min_rad).c_str(), feeds.c_str());
-  return WriteAfpOutputs(*ls->scene, plan, a);
-#else
-  (void)a;
-  (void)path;
-  (void)options;
-  PrintError("plan-collision-unavailable",
-             "--incline auto: collision checking unavailable (sim::CollisionWorld is not built "
-             "into this stitchsim); give --incline DEG");
-  return kExitBadInput;
-#endif
+  return WriteAfpOutputs(*r.loaded->scene, plan, a);
 }
 
 int RunPlanAfp(const PlanAfpArgs& a) {

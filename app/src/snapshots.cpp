@@ -5,9 +5,9 @@
 
 namespace stitchsim::app {
 
-int WriteSnapshotFolder(const VerifySession& vs, const verify::Verifier& verifier,
+int WriteSnapshotFolder(const run::RunModel& vs, const verify::Verifier& verifier,
                         const verify::Report& report, const std::string& dir) {
-  const run::SnapshotInputs in{&vs.ls, vs.model.get(), &vs.description, &verifier, &report};
+  const run::SnapshotInputs in{&vs.loaded, vs.process.get(), &vs.description, &verifier, &report};
   DiagnosticSink sink;
   const run::Status status = run::WriteSnapshotFolder(in, dir, sink);
   return PrintRunOutcome(sink, status);

@@ -4,35 +4,19 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <chrono>
 #include <climits>
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iostream>
-#include <optional>
+#include <string>
 
-#include "chunked_cmd.h"
 #include "cli_common.h"
 #include "commands.h"
 #include "html_report.h"
 #include "snapshots.h"
-#include "stitchsim/common/files.h"
-#include "stitchsim/common/progress.h"
-#include "stitchsim/geom/rotation.h"
-#include "stitchsim/process/stitch_cycle.h"
-#include "stitchsim/program/dialect.h"
-#include "stitchsim/program/identity.h"
 #include "stitchsim/run/pose_track.h"
-#include "stitchsim/sim/dynamics.h"
-#include "stitchsim/sim/executor.h"
-#include "stitchsim/sim/mujoco_cell.h"
-#include "stitchsim/sim/timing.h"
-#include "stitchsim/trace/trace_file.h"
+#include "stitchsim/run/verify_run.h"
 #include "stitchsim/verify/verifier.h"
-#include "verify_run.h"
-#include "verify_session.h"
+#include "verify_cli.h"
 
 namespace stitchsim::app {
 namespace {
@@ -57,9 +41,28 @@ struct VerifyArgs {
   int warm_lines = 128;
 };
 
+// "I/N" with 1 <= I <= N (printed error otherwise).
+bool ParseShard(const std::string& text, int& shard, int& shards) {
+  const std::size_t slash = text.find('/');
+  try {
+    if (slash != std::string::npos) {
+      std::size_t used_i = 0, used_n = 0;
+      shard = std::stoi(text.substr(0, slash), &used_i);
+      shards = std::stoi(text.substr(slash + 1), &used_n);
+      if (used_i == slash && used_n == text.size() - slash - 1 && shards >= 1 && shard >= 1 &&
+          shard <= shards && shards <= 100000) {
+        return true;
+      }
+    }
+  } catch (const std::exception&) {
+  }
+  PrintError("cli-usage", "--shard " + text + ": expected I/N with 1 <= I <= N (e.g. 3/8)");
+  return false;
+}
+
 // --html: the snapshots (into --snapshots' folder, or a scratch folder removed afterwards)
 // read back, then the page.
-int WriteHtml(const VerifyArgs& a, const VerifySession& vs, const verify::Report& report,
+int WriteHtml(const VerifyArgs& a, const run::RunModel& vs, const verify::Report& report,
               const verify::Verifier& verifier, run::PoseTrack& poses) {
   namespace fs = std::filesystem;
   const bool scratch = a.snapshots.empty();
@@ -89,7 +92,7 @@ int WriteHtml(const VerifyArgs& a, const VerifySession& vs, const verify::Report
   poses.Thin(run::PointedLines(verifier), INT_MAX);
   in.report = &report;
   in.verifier = &verifier;
-  in.scene = &vs.ls;
+  in.scene = &vs.loaded;
   in.poses = &poses;
   return WriteHtmlReport(a.html, in);
 }
@@ -115,32 +118,28 @@ int RunVerify(const VerifyArgs& a) {
                "report merge`; --dynamics and --save-trace run in one process");
     return kExitBadInput;
   }
-  VerifyRunOptions run_options;
-  run_options.program = a.program;
-  run_options.dialect = a.dialect;
-  run_options.scene = a.scene;
-  run_options.save_trace = a.save_trace;
-  run_options.no_collision = a.no_collision;
-  run_options.allow_mismatch = a.allow_mismatch;
-  run_options.dynamics = a.dynamics;
-  run_options.quiet = a.quiet;
-  run_options.keep_stitch_marks = !a.snapshots.empty() || !a.html.empty();
-  run_options.record_poses = !a.html.empty();
-  run_options.jobs = a.jobs;
-  run_options.shard = a.shard;
-  run_options.part = a.part;
-  run_options.chunk_lines = a.chunk_lines;
-  run_options.warm_lines = a.warm_lines;
-  VerifyRun run;
-  const int rc = RunVerification(run_options, run);
+  run::VerifyRunOptions o;
+  o.program = a.program;
+  o.dialect = a.dialect;
+  o.scene = a.scene;
+  o.save_trace = a.save_trace;
+  o.run.no_collision = a.no_collision;
+  o.run.allow_mismatch = a.allow_mismatch;
+  o.run.dynamics = a.dynamics;
+  o.keep_stitch_marks = !a.snapshots.empty() || !a.html.empty();
+  o.record_poses = !a.html.empty();
+  o.max_poses = HtmlLimits{}.max_poses;
+  o.chunks = {a.jobs, shard, shards, a.part, a.chunk_lines, a.warm_lines};
+  run::VerifyRun run;
+  const int rc = RunVerificationPrinted(o, a.quiet, run);
   if (rc != kExitOk || !a.shard.empty()) return rc;
   if (WriteReports(run.report, a.report_json, a.junit) != kExitOk) return kExitBadInput;
   if (!a.snapshots.empty() &&
-      WriteSnapshotFolder(*run.session, *run.verifier, run.report, a.snapshots) != kExitOk) {
+      WriteSnapshotFolder(*run.model, *run.verifier, run.report, a.snapshots) != kExitOk) {
     return kExitBadInput;
   }
   if (!a.html.empty() &&
-      WriteHtml(a, *run.session, run.report, *run.verifier, run.poses) != kExitOk) {
+      WriteHtml(a, *run.model, run.report, *run.verifier, run.poses) != kExitOk) {
     return kExitBadInput;
   }
   return run.report.errors == 0 ? kExitOk : kExitFindings;

@@ -34,7 +34,7 @@ std::optional<StitchPathPlanner> StitchPathPlanner::Create(const scene::Scene& s
                                                            const StitchPlanOptions& options,
                                                            DiagnosticSink& sink) {
   StitchPathPlanner p(scene, path);
-  const double nominal = options.nominal_stitch_length_mm.value_or(scene.nominal_stitch_length_mm);
+  const double nominal = scene.StitchLengthMm(options.nominal_stitch_length_mm);
   if (!(nominal > 0.0) || !std::isfinite(nominal)) {
     sink.Error("plan-bad-stitch-length", path.where,
                "nominal stitch length must be a positive finite number");

@@ -68,6 +68,11 @@ struct Scene {
   /// True when the top-level MJCF body `body` (a child of the world) belongs to an omitted
   /// fixture.
   bool OmitsMjcfBody(const std::string& body) const;
+  /// The stitch length a run uses, mm: `given_mm` (a programme header's, a planner option's)
+  /// when set, else this scene's nominal (the one place this fallback lives).
+  double StitchLengthMm(std::optional<double> given_mm) const {
+    return given_mm.value_or(nominal_stitch_length_mm);
+  }
 
   const PathSpec* FindPath(const std::string& path_name) const;
   const PlySpec* FindPly(const std::string& ply_name) const;

@@ -1,7 +1,9 @@
-// `plan afp --incline auto`: every candidate judged by the real executor and verifier.
-#include "afp_incline.h"
+// `plan afp --incline auto` (incline_judge.h): every candidate judged by the real executor and
+// verifier.
+#include "stitchsim/run/incline_judge.h"
 
 #include <algorithm>
+#include <map>
 #include <sstream>
 
 #include "stitchsim/process/stitch_cycle.h"
@@ -11,7 +13,7 @@
 #include "stitchsim/sim/executor.h"
 #include "stitchsim/verify/verifier.h"
 
-namespace stitchsim::app {
+namespace stitchsim::run {
 namespace {
 
 const char* const kJointSpeed = "kin.joint_speed";
@@ -72,7 +74,7 @@ planner::InclineVerdict Judge(const LoadedScene& ls, sim::CollisionWorld& world,
   const std::optional<program::ProgramIdentity> id =
       program::ReadIdentity(input.Header(), "candidate.nc", diagnostics);
   if (!id) return failed();
-  const double stitch_length = id->stitch_length_mm.value_or(ls.scene->nominal_stitch_length_mm);
+  const double stitch_length = ls.scene->StitchLengthMm(id->stitch_length_mm);
   const sim::CellSetup cell = sim::MakeCellSetup(*ls.robot, *ls.scene);
   const process::ProcessModel model = process::MakeProcessModel(*ls.scene, stitch_length);
   const trace::CellDescription cell_description = sim::DescribeCell(*ls.robot, &world);
@@ -92,8 +94,48 @@ planner::InclineVerdict Judge(const LoadedScene& ls, sim::CollisionWorld& world,
 
 }  // namespace
 
-planner::InclineJudge VerifyJudge(const LoadedScene& ls, sim::CollisionWorld& world) {
-  return [&ls, &world](const std::string& text) { return Judge(ls, world, text); };
+planner::InclineJudge VerifyJudge(const LoadedScene& loaded, sim::CollisionWorld& world) {
+  return [&loaded, &world](const std::string& text) { return Judge(loaded, world, text); };
 }
 
-}  // namespace stitchsim::app
+AutoInclineRun PlanAfpAutoIncline(
+    const std::string& scene_file, const scene::LoadOptions& load,
+    const std::optional<std::string>& path_name, const planner::AfpPlanOptions& options,
+    const planner::InclineSearchOptions& search,
+    const std::function<void(const planner::InclineCandidate&)>& on_candidate,
+    DiagnosticSink& sink) {
+  AutoInclineRun out;
+  out.loaded = LoadScene(scene_file, load, sink);
+  if (!out.loaded) return out;
+  const scene::Scene& scene = *out.loaded->scene;
+  DiagnosticSink world_sink;
+  auto world = sim::CollisionWorld::Create(scene, *out.loaded->robot, world_sink);
+  if (Forward(world_sink, sink) || !world) return out;
+  const scene::PathSpec* path = path_name ? scene.FindPath(*path_name) : nullptr;
+  DiagnosticSink search_sink;
+  out.search = planner::SearchAfpIncline(
+      scene, path, options, search, VerifyJudge(*out.loaded, *world), search_sink, on_candidate);
+  if (Forward(search_sink, sink)) return out;
+  if (!out.search.error.empty()) {
+    ToolError(sink, "plan-incline-check", "--incline auto: " + out.search.error);
+    return out;
+  }
+  out.status = RunStatus::kOk;
+  return out;
+}
+
+std::string FailuresByRule(const std::vector<planner::InclineCandidate>& candidates) {
+  std::map<std::string, int> by_rule;  // first failing rule -> candidates
+  for (const auto& c : candidates) {
+    std::string rule = c.failure.substr(0, c.failure.find(' '));
+    if (!rule.empty() && rule.back() == ':') rule.pop_back();
+    ++by_rule[rule];
+  }
+  std::string why;
+  for (const auto& [rule, n] : by_rule) {
+    why += (why.empty() ? "" : ", ") + rule + " on " + std::to_string(n);
+  }
+  return why;
+}
+
+}  // namespace stitchsim::run

@@ -14,31 +14,19 @@
 #include <vector>
 
 #include "stitchsim/common/exact_sum.h"
-#include "stitchsim/process/stitch_cycle.h"
-#include "stitchsim/program/dialect.h"
 #include "stitchsim/run/pose_track.h"
+#include "stitchsim/run/run_model.h"
 #include "stitchsim/sim/chunk.h"
-#include "stitchsim/sim/collision.h"
-#include "stitchsim/sim/mujoco_cell.h"
-#include "stitchsim/sim/timing.h"
 #include "stitchsim/verify/verifier.h"
 
-namespace stitchsim::app {
+namespace stitchsim::run {
 
-/// What every chunk's run is made from (read-only while workers run: each run makes its own
-/// collision and MuJoCo state from the prototypes with Share()).
+/// What every chunk's run is made from (read-only while workers run: each chunk makes its own
+/// RunData from the model).
 struct ChunkSetup {
-  const program::Dialect* dialect = nullptr;
-  std::string program_path;
-  const sim::CellSetup* cell = nullptr;
-  const sim::RobotModel* robot = nullptr;
-  const process::ProcessModel* process = nullptr;
-  const sim::CollisionWorld* collision = nullptr;  ///< null: --no-collision
-  const sim::MujocoCell* mujoco = nullptr;
-  sim::ExecuteOptions execute;
-  sim::TimingOptions timing;
-  verify::RuleContext rules;
-  bool keep_stitch_marks = false;
+  const RunModel* model = nullptr;  ///< not owned; outlives the run
+  std::string program_path;         ///< the programme, reopened by each chunk
+  bool keep_stitch_marks = false;   ///< every stitch's verdict kept (the overview snapshot)
   /// Record line-end poses (verify --html): at most this many per chunk beside the lines its
   /// findings point at; 0 = none.
   std::size_t chunk_poses = 0;
@@ -48,8 +36,8 @@ struct ChunkSetup {
 /// executor takes the boundary line on, the timing sink's output side and the verifier's when
 /// the verifier takes it on.
 struct BoundaryState {
-  sim::ChunkCarry input;
-  std::string output;
+  sim::ChunkCarry input;  ///< the executor's and the timing sink's input side, as bytes
+  std::string output;     ///< the timing sink's output side then the verifier's, as bytes
   bool operator==(const BoundaryState&) const = default;
   std::string Hex() const;  ///< for partial files
   /// What differs from `other`, for people ("" when equal).
@@ -61,12 +49,12 @@ struct BoundaryState {
 struct ChunkResult {
   sim::Chunk chunk;          ///< its warm start may be an earlier chunk's (a re-run)
   BoundaryState start, end;  ///< at chunk.first_line and chunk.end_line
-  std::unique_ptr<verify::Verifier> verifier;  ///< the chunk's lines only
-  ExactSum timed;                              ///< timed durations of the chunk's lines (s)
+  std::unique_ptr<verify::Verifier> verifier;  ///< owned; the chunk's lines only
+  ExactSum timed;                              ///< timed durations of the chunk's lines, s
   long lines = 0;                              ///< motion lines counted
-  std::unique_ptr<run::PoseTrack> poses;       ///< ChunkSetup::chunk_poses > 0: the chunk's
-  bool ok = false;
-  std::string error;  ///< when !ok
+  std::unique_ptr<PoseTrack> poses;            ///< owned; ChunkSetup::chunk_poses > 0: the chunk's
+  bool ok = false;                             ///< ran to its end line (or the programme's)
+  std::string error;                           ///< when !ok: the first diagnostic or exception
 };
 
 /// Runs one chunk (any thread). `lines_done` (if set) counts the lines it has verified.
@@ -86,7 +74,7 @@ class ChunkMerger {
   std::unique_ptr<verify::Verifier> TakeVerifier() { return std::move(verifier_); }
   const ExactSum& Timed() const { return timed_; }
   /// The taken chunks' poses, in order (empty without ChunkSetup::chunk_poses).
-  run::PoseTrack& Poses() { return poses_; }
+  PoseTrack& Poses() { return poses_; }
   const ChunkResult* Last() const { return last_ ? &*last_ : nullptr; }
   const BoundaryState& FirstStart() const { return first_start_; }
   /// The first boundary that did not match, and what differed (empty: none).
@@ -95,20 +83,21 @@ class ChunkMerger {
  private:
   std::unique_ptr<verify::Verifier> verifier_;
   ExactSum timed_;
-  run::PoseTrack poses_{std::numeric_limits<std::size_t>::max()};
+  PoseTrack poses_{std::numeric_limits<std::size_t>::max()};
   int taken_ = 0;
   std::optional<ChunkResult> last_;  ///< without its verifier (absorbed)
   BoundaryState first_start_;
   std::string first_mismatch_;
 };
 
+/// Every chunk run and merged in order (RunChunks).
 struct ChunkedRun {
-  bool ok = false;
-  std::string error;
-  std::unique_ptr<verify::Verifier> verifier;  ///< the merged verifier
-  ExactSum timed;
-  run::PoseTrack poses{std::numeric_limits<std::size_t>::max()};  ///< every chunk's, in order
-  int reruns = 0;
+  bool ok = false;                             ///< every chunk merged
+  std::string error;                           ///< when !ok: what failed (a bug or bad input)
+  std::unique_ptr<verify::Verifier> verifier;  ///< owned; the merged verifier, not finished
+  ExactSum timed;                              ///< timed durations of every chunk's lines, s
+  PoseTrack poses{std::numeric_limits<std::size_t>::max()};  ///< every chunk's, in order
+  int reruns = 0;                                            ///< chunks run again
   std::string first_mismatch;  ///< what differed at the first chunk run again
   BoundaryState start, end;    ///< of the first and the last chunk run
 };
@@ -121,4 +110,4 @@ ChunkedRun RunChunks(const ChunkSetup& setup, int jobs, bool starts_at_zero,
                      const std::function<std::optional<sim::Chunk>()>& next_chunk,
                      std::atomic<long>* lines_done, const std::function<void()>& tick);
 
-}  // namespace stitchsim::app
+}  // namespace stitchsim::run

@@ -1,16 +1,10 @@
-#include "chunked_verify.h"
-
-#include <chrono>
 #include <climits>
-#include <condition_variable>
 #include <cstdio>
 #include <cstring>
-#include <deque>
-#include <map>
-#include <mutex>
-#include <thread>
 
-namespace stitchsim::app {
+#include "stitchsim/run/chunked.h"
+
+namespace stitchsim::run {
 namespace {
 
 // Between the timing sink and a chunk's verifier: the warm-up's lines rebuild the verifier's
@@ -155,23 +149,15 @@ ChunkResult RunChunk(const ChunkSetup& setup, const sim::Chunk& chunk,
   ChunkResult result;
   result.chunk = chunk;
   // Fresh per-run state: a run's answers depend on where it started only.
-  std::unique_ptr<sim::MujocoCell> kinematics = setup.mujoco->Share();
-  std::unique_ptr<sim::MujocoCell> timing_cell = setup.mujoco->Share();
-  std::unique_ptr<sim::CollisionWorld> collision;
-  if (setup.collision != nullptr) {
-    collision = setup.collision->Share();
-    collision->UseKinematics(kinematics.get());
-  }
-  sim::ExecuteOptions options = setup.execute;
-  options.collision = collision.get();
-  options.mujoco = kinematics.get();
-  result.verifier = std::make_unique<verify::Verifier>(setup.rules, setup.keep_stitch_marks);
+  RunData data = MakeRunData(*setup.model);
+  const RunModel& model = *setup.model;
+  result.verifier = std::make_unique<verify::Verifier>(model.Rules(), setup.keep_stitch_marks);
   Gate gate(*result.verifier, result.chunk, lines_done);
-  sim::TimingSink timing(*timing_cell, *setup.robot, setup.timing, gate);
+  sim::TimingSink timing(*data.timing, *model.loaded.robot, model.timing, gate);
   gate.SetTiming(&timing);
-  std::optional<run::PoseRecorder> recorder;
+  std::optional<PoseRecorder> recorder;
   if (setup.chunk_poses > 0) {
-    result.poses = std::make_unique<run::PoseTrack>(setup.chunk_poses);
+    result.poses = std::make_unique<PoseTrack>(setup.chunk_poses);
     recorder.emplace(*result.poses, nullptr);
     gate.SetRecorder(&*recorder);
   }
@@ -183,8 +169,8 @@ ChunkResult RunChunk(const ChunkSetup& setup, const sim::Chunk& chunk,
   hooks.stop = [&] { return gate.Done(); };
   BoundedDiagnosticSink diagnostics(8);
   const sim::ExecutionSummary run =
-      sim::ExecuteChunk(*setup.cell, *setup.process, *setup.dialect, setup.program_path, chunk,
-                        options, diagnostics, timing, hooks);
+      sim::ExecuteChunk(model.cell, *model.process, model.dialect, setup.program_path, chunk,
+                        data.execute, diagnostics, timing, hooks);
   if (!run.ok) {
     result.error = diagnostics.Diagnostics().empty() ? "chunk run failed"
                                                      : diagnostics.Diagnostics().front().message;
@@ -197,7 +183,7 @@ ChunkResult RunChunk(const ChunkSetup& setup, const sim::Chunk& chunk,
   result.end.output = std::move(gate.end_);
   result.timed = gate.timed_;
   result.lines = gate.lines_;
-  if (result.poses) result.poses->Thin(run::PointedLines(*result.verifier), INT_MAX);
+  if (result.poses) result.poses->Thin(PointedLines(*result.verifier), INT_MAX);
   result.ok = true;
   return result;
 }
@@ -267,155 +253,4 @@ sim::Chunk ChunkMerger::Rerun(const sim::Chunk& next) const {
   return c;
 }
 
-namespace {
-
-// The workers' side of RunChunks: chunks to run (new ones from the source, re-runs first),
-// results by chunk index.
-struct WorkPool {
-  WorkPool(const ChunkSetup& s, const std::function<std::optional<sim::Chunk>()>& source,
-           std::atomic<long>* done_lines)
-      : setup(s), next_chunk(source), lines_done(done_lines) {}
-  const ChunkSetup& setup;
-  const std::function<std::optional<sim::Chunk>()>& next_chunk;
-  std::atomic<long>* lines_done;
-  std::mutex m;
-  std::condition_variable cv;
-  std::map<int, ChunkResult> done;
-  std::map<int, sim::Chunk> pending;  // chunks known but not yet merged (for re-runs)
-  std::deque<sim::Chunk> reruns;
-  bool exhausted = false, stop = false;
-  int source_busy = 0;  // workers inside next_chunk
-
-  void Work() {
-    std::unique_lock lock(m);
-    for (;;) {
-      cv.wait(lock, [&] { return stop || !reruns.empty() || (!exhausted && source_busy == 0); });
-      if (stop) return;
-      sim::Chunk c;
-      if (!reruns.empty()) {
-        c = reruns.front();
-        reruns.pop_front();
-      } else {
-        ++source_busy;
-        lock.unlock();
-        std::optional<sim::Chunk> next = next_chunk();
-        lock.lock();
-        --source_busy;
-        if (!next) {
-          exhausted = true;
-          cv.notify_all();
-          continue;
-        }
-        c = *next;
-        pending[c.index] = c;
-        cv.notify_all();
-      }
-      lock.unlock();
-      ChunkResult r;
-      try {
-        r = RunChunk(setup, c, lines_done);
-      } catch (const std::exception& e) {  // a bug: reported by the merging thread, exit 3
-        r.chunk = c;
-        r.ok = false;
-        r.error = e.what();
-      }
-      lock.lock();
-      done[c.index] = std::move(r);
-      cv.notify_all();
-    }
-  }
-};
-
-}  // namespace
-
-ChunkedRun RunChunks(const ChunkSetup& setup, int jobs, bool starts_at_zero,
-                     const std::function<std::optional<sim::Chunk>()>& next_chunk,
-                     std::atomic<long>* lines_done, const std::function<void()>& tick) {
-  WorkPool pool(setup, next_chunk, lines_done);
-  std::mutex& m = pool.m;
-  std::condition_variable& cv = pool.cv;
-  std::map<int, ChunkResult>& done = pool.done;
-  std::map<int, sim::Chunk>& pending = pool.pending;
-  std::deque<sim::Chunk>& reruns = pool.reruns;
-  std::vector<std::thread> threads;
-  for (int i = 0; i < std::max(1, jobs); ++i) threads.emplace_back([&pool] { pool.Work(); });
-  ChunkedRun out;
-  ChunkMerger merger;
-  {
-    std::unique_lock lock(m);
-    int first = starts_at_zero ? 0 : -1;  // the first chunk to merge
-    for (;;) {
-      if (first < 0 && !pending.empty()) first = pending.begin()->first;
-      const int next = first + merger.Taken();
-      cv.wait_for(lock, std::chrono::milliseconds(500), [&] {
-        return (first >= 0 && done.count(next) > 0) || (pool.exhausted && pending.empty());
-      });
-      if (tick) {
-        lock.unlock();
-        tick();
-        lock.lock();
-      }
-      if (first < 0 && !pending.empty()) continue;
-      auto it = first >= 0 ? done.find(next) : done.end();
-      if (it == done.end()) {
-        // Every chunk the first pass found (for this process) is merged.
-        if (pool.exhausted && pending.empty() && pool.source_busy == 0) {
-          out.ok = merger.Taken() > 0;
-          if (!out.ok) out.error = "no chunk to run";
-          break;
-        }
-        continue;
-      }
-      ChunkResult r = std::move(it->second);
-      done.erase(it);
-      if (!r.ok) {
-        out.error = r.error;
-        break;
-      }
-      const sim::Chunk as_planned = pending.count(next) ? pending[next] : r.chunk;
-      const bool r_warm_start = r.chunk.warm.programme_start;
-      const std::uint64_t r_warm_bytes = r.chunk.warm.reader.bytes;
-      lock.unlock();
-      ChunkMerger::Outcome outcome = ChunkMerger::Outcome::kTaken;
-      std::string merge_error;
-      try {
-        outcome = merger.Add(std::move(r));
-      } catch (const std::exception& e) {  // a bug (e.g. a part ending with the needles in)
-        merge_error = e.what();
-      }
-      lock.lock();
-      if (!merge_error.empty()) {
-        out.error = merge_error;
-        break;
-      }
-      if (outcome == ChunkMerger::Outcome::kRerun) {
-        if (!(as_planned.warm.programme_start == r_warm_start &&
-              as_planned.warm.reader.bytes == r_warm_bytes)) {
-          // A run from the chunk before's own start differs from that chunk's: not
-          // deterministic (a bug); never take it.
-          out.error = "chunk " + std::to_string(next) + " is not reproducible from line " +
-                      std::to_string(as_planned.first_line);
-          break;
-        }
-        ++out.reruns;
-        reruns.push_front(merger.Rerun(as_planned));
-        cv.notify_all();
-        continue;
-      }
-      pending.erase(next);
-    }
-    pool.stop = true;
-    cv.notify_all();
-  }
-  for (auto& t : threads) t.join();
-  if (!out.ok) return out;
-  out.first_mismatch = merger.FirstMismatch();
-  out.verifier = merger.TakeVerifier();
-  out.timed = merger.Timed();
-  out.poses = std::move(merger.Poses());
-  out.start = merger.FirstStart();
-  out.end = merger.Last()->end;
-  return out;
-}
-
-}  // namespace stitchsim::app
+}  // namespace stitchsim::run
