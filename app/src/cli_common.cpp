@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "stitchsim/common/files.h"
+#include "stitchsim/planner/plan_status.h"
 
 namespace stitchsim::app {
 
@@ -78,6 +79,13 @@ std::optional<LoadedScene> LoadSceneAndRobot(const std::filesystem::path& scene_
   std::optional<LoadedScene> out = run::LoadScene(scene_file, SceneLoadOptions(), sink);
   if (PrintDiagnostics(sink)) return std::nullopt;
   return out;
+}
+
+const scene::PathSpec* PathOrReport(const scene::Scene& scene, const std::string& file,
+                                    const std::string& name) {
+  const planner::PathChoice choice = planner::ChoosePath(scene, name);
+  if (!choice.status.Ok()) PrintError(choice.status.code, file + ": " + choice.status.message);
+  return choice.path;
 }
 
 }  // namespace stitchsim::app

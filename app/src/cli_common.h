@@ -54,6 +54,11 @@ int WriteProgramAndCsv(const std::string& program, const std::string& csv,
 
 using run::LoadedScene;
 
+/// The scene's path named `name` (the first path when empty); reported (plan-unknown-path,
+/// with the names there are; `file` names the scene) and nullptr when there is none.
+const scene::PathSpec* PathOrReport(const scene::Scene& scene, const std::string& file,
+                                    const std::string& name);
+
 /// Loads the scene and the cell URDF it names; prints diagnostics; nullopt on any error.
 std::optional<LoadedScene> LoadSceneAndRobot(const std::filesystem::path& scene_file);
 

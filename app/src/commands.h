@@ -17,6 +17,8 @@ namespace stitchsim::app {
 void AddRenderCommand(CLI::App& app, int& exit_code);
 void AddCheckCommand(CLI::App& app, int& exit_code);
 void AddPlanCommand(CLI::App& app, int& exit_code);
+/// `plan afp` under the `plan` command (plan_afp_cmd.cpp).
+void AddPlanAfpCommand(CLI::App& plan, int& exit_code);
 /// `plan ply` under the `plan` command (ply_cmd.cpp).
 void AddPlanPlyCommand(CLI::App& plan, int& exit_code);
 void AddVerifyCommand(CLI::App& app, int& exit_code);

@@ -7,6 +7,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "plan_progress.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/planner/ply_planner.h"
 
 namespace stitchsim::app {
@@ -32,7 +33,7 @@ void PrintPly(const scene::Scene& scene, const planner::PlyPlan& plan, double wa
       "mm/s); min steering radius %.1f mm (head limit %.1f mm); max gap %.4f mm, max overlap "
       "%.4f mm between courses; bare %.2f %%, doubled %.2f %%, laid outside %.2f %% of the ply; "
       "planned in %.2f s -> %s%s%s\n",
-      scene.name.c_str(), plan.ply_name.c_str(), plan.angle_rad * 180.0 / 3.14159265358979323846,
+      scene.name.c_str(), plan.ply_name.c_str(), plan.angle_rad * 180.0 / kPi,
       plan.coverage * 100.0, plan.band.count, plan.layout.width_mm, plan.band.first,
       plan.band.Last(), scene.head.name.c_str(), plan.courses.size(), laid_tows, plan.tow_segments,
       plan.events, plan.laid_length_mm, plan.laid_length_mm / scene.head.afp.layup_speed_mm_s,

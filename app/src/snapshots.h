@@ -4,9 +4,9 @@
 
 #include <string>
 
+#include "stitchsim/run/run_model.h"
 #include "stitchsim/verify/report.h"
 #include "stitchsim/verify/verifier.h"
-#include "stitchsim/run/run_model.h"
 
 namespace stitchsim::app {
 

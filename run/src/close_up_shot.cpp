@@ -125,12 +125,8 @@ double ViewScore(const ViewCount& c) {
   return smallest * (1.0 - 0.8 * hidden);
 }
 
-// The close-ups' camera distance is worked out with pi to 15 digits, as it always was: kPi
-// moves snapshots.json's distance_m in its last digit (the pictures stay the same).
-constexpr double kPiTo15Digits = 3.14159265358979;
-
 double FrameDistance(const mjModel& model, double radius_m) {
-  const double half_fovy = 0.5 * model.vis.global.fovy * kPiTo15Digits / 180.0;
+  const double half_fovy = 0.5 * model.vis.global.fovy * kPi / 180.0;
   return radius_m / std::tan(half_fovy) * 1.05;
 }
 
