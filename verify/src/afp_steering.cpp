@@ -112,17 +112,7 @@ class SteeringRadiusRule final : public Rule {
   // Counts one measurement of tow `tow` and tracks the smallest radius (the rule's and the
   // tow's: Rule::Observe keeps the largest); a radius under the limit waits for its line.
   void Consider(double radius, int line, int tow) {
-    Counted();
-    if (!summary_.worst_value || radius < *summary_.worst_value) {
-      summary_.worst_value = radius;
-      summary_.worst_line = line;
-    }
-    SubjectFigure& figure = summary_.subjects[static_cast<std::size_t>(tow) - 1];
-    ++figure.checked;
-    if (!figure.worst_value || radius < *figure.worst_value) {
-      figure.worst_value = radius;
-      figure.worst_line = line;
-    }
+    ObserveSmallest(radius, line, static_cast<std::size_t>(tow) - 1);
     if (radius >= *summary_.error_limit) return;
     auto [it, added] = below_.try_emplace(line, Worst{radius, tow});
     if (!added && radius < it->second.radius_mm) it->second = {radius, tow};

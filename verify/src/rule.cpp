@@ -124,6 +124,20 @@ void Rule::ObserveSubject(std::size_t index, double value, int line, long stitch
   }
 }
 
+void Rule::ObserveSmallest(double value, int line, std::size_t index) {
+  ++summary_.checked;
+  if (!summary_.worst_value || value < *summary_.worst_value) {
+    summary_.worst_value = value;
+    summary_.worst_line = line;
+  }
+  SubjectFigure& figure = summary_.subjects[index];
+  ++figure.checked;
+  if (!figure.worst_value || value < *figure.worst_value) {
+    figure.worst_value = value;
+    figure.worst_line = line;
+  }
+}
+
 std::optional<FindingSeverity> Rule::Classify(double value, int line, long stitch,
                                               const trace::TraceSample* sample) {
   ++summary_.checked;

@@ -38,7 +38,7 @@ std::optional<std::array<double, 3>> PositionFrom(const json& j) {
                                DoubleFromJson(j.at(2))};
 }
 
-json FindingToJson(const Finding& f) {
+json FindingToPartialJson(const Finding& f) {
   return json{{"rule", f.rule},
               {"severity", SeverityText(f.severity)},
               {"line", f.line},
@@ -66,7 +66,7 @@ Finding FindingFrom(const json& j) {
   return f;
 }
 
-json SubjectToJson(const SubjectFigure& s) {
+json SubjectToPartialJson(const SubjectFigure& s) {
   return json{{"subject", s.subject},
               {"checked", s.checked},
               {"error_limit", OptionalToJson(s.error_limit)},
@@ -90,8 +90,8 @@ SubjectFigure SubjectFrom(const json& j) {
 
 json SummaryToJson(const RuleSummary& s) {
   json subjects = json::array(), findings = json::array();
-  for (const SubjectFigure& f : s.subjects) subjects.push_back(SubjectToJson(f));
-  for (const Finding& f : s.findings) findings.push_back(FindingToJson(f));
+  for (const SubjectFigure& f : s.subjects) subjects.push_back(SubjectToPartialJson(f));
+  for (const Finding& f : s.findings) findings.push_back(FindingToPartialJson(f));
   return json{{"id", s.id},
               {"description", s.description},
               {"unit", s.unit},

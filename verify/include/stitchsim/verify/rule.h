@@ -170,6 +170,9 @@ class Rule {
   void Plot(int line, double value) { series_.Add(line, value); }
   /// Tracks the worst value without a finding (and plots it).
   void Observe(double value, int line, long stitch, const trace::TraceSample* sample);
+  /// Counts one item of subject `index` and tracks the smallest value, the rule's and the
+  /// subject's (a lower-bound rule that records its own findings, e.g. afp.steering_radius).
+  void ObserveSmallest(double value, int line, std::size_t index);
   /// Adds a subject with its own limits (RuleSummary::subjects); returns its index.
   std::size_t AddSubject(std::string subject, std::optional<double> error_limit,
                          std::optional<double> warning_limit);
