@@ -74,4 +74,9 @@ Eigen::Vector2d TowCentreUv(const process::TowCross& cross, int tow) {
   return 0.5 * (cross.boundary_uv[t - 1] + cross.boundary_uv[t]);
 }
 
+void KeepSmallest(std::map<int, TowShortfall>& pending, int line, const TowShortfall& s) {
+  auto [it, added] = pending.try_emplace(line, s);
+  if (!added && s.value < it->second.value) it->second = s;
+}
+
 }  // namespace stitchsim::verify::detail

@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -79,6 +80,28 @@ class ThinnedPoints {
  private:
   Thinned<Eigen::Vector3d> points_{kMaxDrawnPoints};
 };
+
+/// A tow's figure under a rule's limit, waiting for its line to be complete (one finding per
+/// line: the worst tow of the line).
+struct TowShortfall {
+  double value = 0.0;  ///< the rule's unit
+  int tow = 0;         ///< 1-based
+  int other_line = 0;  ///< a second line the finding names (afp.min_tow_length: the cut)
+};
+
+/// Keeps `s` for `line` unless a smaller value is kept there already.
+void KeepSmallest(std::map<int, TowShortfall>& pending, int line, const TowShortfall& s);
+
+/// Hands the pending lines up to `last_line` to `record(line, shortfall)` in line order and
+/// forgets them.
+template <typename RecordFn>
+void TakeLinesUpTo(std::map<int, TowShortfall>& pending, int last_line, RecordFn&& record) {
+  while (!pending.empty() && pending.begin()->first <= last_line) {
+    const auto [line, s] = *pending.begin();
+    pending.erase(pending.begin());
+    record(line, s);
+  }
+}
 
 /// The sampler every afp.* rule of one verifier shares.
 std::shared_ptr<LaidTows> MakeLaidTows(const RuleContext& ctx);

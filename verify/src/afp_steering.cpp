@@ -104,18 +104,11 @@ class SteeringRadiusRule final : public Rule {
     Eigen::Vector3d last = Eigen::Vector3d::Zero();  ///< the last vertex's centre
     SteeringWindow window;
   };
-  struct Worst {
-    double radius_mm = 0.0;
-    int tow = 0;
-  };
-
   // Counts one measurement of tow `tow` and tracks the smallest radius (the rule's and the
   // tow's: Rule::Observe keeps the largest); a radius under the limit waits for its line.
   void Consider(double radius, int line, int tow) {
     ObserveSmallest(radius, line, static_cast<std::size_t>(tow) - 1);
-    if (radius >= *summary_.error_limit) return;
-    auto [it, added] = below_.try_emplace(line, Worst{radius, tow});
-    if (!added && radius < it->second.radius_mm) it->second = {radius, tow};
+    if (radius < *summary_.error_limit) detail::KeepSmallest(below_, line, {radius, tow, 0});
   }
 
   // Records the lines up to `last_line` with a radius under the limit: one finding per line.
@@ -124,23 +117,21 @@ class SteeringRadiusRule final : public Rule {
     for (const Tow& tow : tows_)
       if (tow.laying) pending = std::min(pending, tow.window.PendingTag());
     last_line = std::min(last_line, pending - 1);
-    while (!below_.empty() && below_.begin()->first <= last_line) {
-      const auto [line, worst] = *below_.begin();
-      below_.erase(below_.begin());
+    detail::TakeLinesUpTo(below_, last_line, [&](int line, const detail::TowShortfall& worst) {
       char buf[200];
       std::snprintf(buf, sizeof(buf),
                     "tow %d steers on a radius of %.4g mm, below the head's smallest steering "
                     "radius of %.4g mm",
-                    worst.tow, worst.radius_mm, *summary_.error_limit);
-      Record(FindingSeverity::kError, worst.radius_mm, *summary_.error_limit, line, 0,
+                    worst.tow, worst.value, *summary_.error_limit);
+      Record(FindingSeverity::kError, worst.value, *summary_.error_limit, line, 0,
              "tow " + std::to_string(worst.tow), buf, nullptr);
-    }
+    });
   }
 
   std::shared_ptr<detail::LaidTows> laid_;
   std::vector<Tow> tows_;  ///< per tow (index 1..k)
   std::vector<SteeringWindow::Radius> radii_;
-  std::map<int, Worst> below_;  ///< per line: the smallest radius under the limit, not recorded
+  std::map<int, detail::TowShortfall> below_;  ///< per line: the smallest radius under the limit
 };
 
 }  // namespace
