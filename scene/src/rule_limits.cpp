@@ -103,6 +103,9 @@ constexpr LimitSpec kTable[] = {
      "area of a ply left bare, beyond the band of one tow width along its boundary, percent"},
     {K::kAfpCoverageMaxDoubledPct, "afp.coverage", "max_doubled_pct", U::kPct, 5.0, false,
      "area of a ply covered twice or more, beyond the band along its boundary, percent"},
+    {K::kAfpMinTowLengthMm, "afp.min_tow_length", "min_mm", U::kMm, std::nullopt, false,
+     "shortest tow piece the head can lay, from its add to its cut: the distance from the "
+     "cutter to the compaction roller (none given: the rule is skipped)"},
     {K::kTrackingErrorMm, "dyn.tracking", "error_mm", U::kMm, 2.0, false,
      "tool point lagging its command in a dynamic run (`verify --dynamics`), error"},
     {K::kTrackingWarningMm, "dyn.tracking", "warning_mm", U::kMm, 0.5, false,

@@ -18,6 +18,7 @@
   X(AfpOverlapRuleEntry)           \
   X(AfpCompactionRuleEntry)        \
   X(AfpCoverageRuleEntry)          \
+  X(AfpMinTowLengthRuleEntry)      \
   X(ReachRuleEntry)                \
   X(JointLimitRuleEntry)           \
   X(SingularityRuleEntry)          \

@@ -58,7 +58,8 @@ enum class LimitKey : int {
   kAfpCompactionMaxLeanDeg,
   kAfpCoverageMaxBarePct,  ///< afp.coverage max_bare_pct
   kAfpCoverageMaxDoubledPct,
-  kTrackingErrorMm,  ///< dyn.tracking error_mm (verify --dynamics)
+  kAfpMinTowLengthMm,  ///< afp.min_tow_length min_mm
+  kTrackingErrorMm,    ///< dyn.tracking error_mm (verify --dynamics)
   kTrackingWarningMm,
   kCount
 };
