@@ -88,4 +88,11 @@ const scene::PathSpec* PathOrReport(const scene::Scene& scene, const std::string
   return choice.path;
 }
 
+int PrintRunOutcome(const DiagnosticSink& sink, const run::Status& status) {
+  const bool sink_errors = PrintDiagnostics(sink);
+  if (status.ok && !sink_errors) return kExitOk;
+  if (!status.code.empty()) PrintError(status.code, status.message);
+  return status.code == "internal" ? kExitInternal : kExitBadInput;
+}
+
 }  // namespace stitchsim::app

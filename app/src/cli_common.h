@@ -13,6 +13,7 @@
 #include "stitchsim/common/diagnostics.h"
 #include "stitchsim/program/dialect.h"
 #include "stitchsim/run/loaded_scene.h"
+#include "stitchsim/run/status.h"
 #include "stitchsim/scene/scene.h"
 
 namespace stitchsim::app {
@@ -37,6 +38,10 @@ bool ProgramInputOk(const std::string& path);
 
 /// Prints every diagnostic to stderr; returns true if any was an error.
 bool PrintDiagnostics(const DiagnosticSink& sink);
+
+/// Prints a run function's diagnostics, then its error as PrintError does; the exit code:
+/// kExitOk, kExitInternal for an "internal" error, else kExitBadInput.
+int PrintRunOutcome(const DiagnosticSink& sink, const run::Status& status);
 
 /// Prints "stitchsim: error[code]: message" for a problem that has no file position.
 void PrintError(const std::string& code, const std::string& message);

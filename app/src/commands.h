@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "cli_common.h"
-#include "stitchsim/run/status.h"
 #include "stitchsim/trace/trace_file.h"
 #include "stitchsim/verify/report.h"
 #include "stitchsim/verify/verifier.h"
@@ -31,9 +30,5 @@ void AddExportStepCommand(CLI::App& app, int& exit_code);
 void AddSequenceCommand(CLI::App& app, int& exit_code);
 /// `diff` (diff_cmd.cpp): two programmes verified and their reports compared.
 void AddDiffCommand(CLI::App& app, int& exit_code);
-
-/// Prints a run function's diagnostics, then its error as PrintError does; the exit code:
-/// kExitOk, kExitInternal for an "internal" error, else kExitBadInput.
-int PrintRunOutcome(const DiagnosticSink& sink, const run::Status& status);
 
 }  // namespace stitchsim::app

@@ -64,13 +64,6 @@ int RunRender(const RenderArgs& args) {
 
 }  // namespace
 
-int PrintRunOutcome(const DiagnosticSink& sink, const run::Status& status) {
-  const bool sink_errors = PrintDiagnostics(sink);
-  if (status.ok && !sink_errors) return kExitOk;
-  if (!status.code.empty()) PrintError(status.code, status.message);
-  return status.code == "internal" ? kExitInternal : kExitBadInput;
-}
-
 void AddRenderCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand(
