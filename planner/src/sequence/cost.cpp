@@ -20,6 +20,8 @@ const char* ToString(SolveStatus status) {
       return "time-limit";
     case SolveStatus::kGiven:
       return "given";
+    case SolveStatus::kStagnation:
+      return "stagnation";
   }
   return "?";
 }
@@ -46,7 +48,7 @@ double MoveCost(const SequenceProblem& p, const double* from, const double* to) 
 
 double PathCost(const SequenceProblem& p, const std::vector<Visit>& order) {
   detail::AssertWellFormed(p);
-  if (order.empty()) return p.finish ? MoveCost(p, p.start.data(), p.finish->data()) : 0.0;
+  if (order.empty()) return detail::StartToFinish(p);
   double cost = detail::FromStart(p, order.front());
   for (std::size_t i = 1; i < order.size(); ++i) cost += detail::Edge(p, order[i - 1], order[i]);
   return cost + detail::ToFinish(p, order.back());

@@ -23,26 +23,49 @@ inline const double* StartOf(const SequenceProblem& p, Visit v) {
 inline const double* EndOf(const SequenceProblem& p, Visit v) {
   return Row(p, 4 * v.course + (v.reversed ? 3 : 1));
 }
-/// The off-part move from the end of `a` to the start of `b`.
-inline double Edge(const SequenceProblem& p, Visit a, Visit b) {
-  return MoveCost(p, EndOf(p, a), StartOf(p, b));
-}
-/// From p.start to the start of v; from the end of v to p.finish (0 without a finish).
-inline double FromStart(const SequenceProblem& p, Visit v) {
-  return MoveCost(p, p.start.data(), StartOf(p, v));
-}
-inline double ToFinish(const SequenceProblem& p, Visit v) {
-  return p.finish ? MoveCost(p, EndOf(p, v), p.finish->data()) : 0.0;
-}
 inline Visit Flip(Visit v) { return {v.course, !v.reversed}; }
 
 /// Node numbering of visits: 2 course + reversed.
 inline Visit NodeVisit(int node) { return {node / 2, (node & 1) != 0}; }
 inline int VisitNode(Visit v) { return 2 * v.course + (v.reversed ? 1 : 0); }
 
+/// The off-part move from the end of `a` to the start of `b`.
+inline double Edge(const SequenceProblem& p, Visit a, Visit b) {
+  if (p.table) {
+    return p.table
+        ->move[static_cast<std::size_t>(VisitNode(a)) * 2 * static_cast<std::size_t>(p.courses) +
+               static_cast<std::size_t>(VisitNode(b))];
+  }
+  return MoveCost(p, EndOf(p, a), StartOf(p, b));
+}
+/// From p.start to the start of v; from the end of v to p.finish (0 without a finish).
+inline double FromStart(const SequenceProblem& p, Visit v) {
+  if (p.table) return p.table->from_start[static_cast<std::size_t>(VisitNode(v))];
+  return MoveCost(p, p.start.data(), StartOf(p, v));
+}
+inline double ToFinish(const SequenceProblem& p, Visit v) {
+  if (!p.finish) return 0.0;
+  if (p.table) return p.table->to_finish[static_cast<std::size_t>(VisitNode(v))];
+  return MoveCost(p, EndOf(p, v), p.finish->data());
+}
+/// The path of no course: start straight to finish (0 without a finish).
+inline double StartToFinish(const SequenceProblem& p) {
+  if (!p.finish) return 0.0;
+  if (p.table) return p.table->start_to_finish;
+  return MoveCost(p, p.start.data(), p.finish->data());
+}
+
 /// Asserts the problem's arrays have the sizes its counts promise (programming errors).
 inline void AssertWellFormed(const SequenceProblem& p) {
   assert(p.courses >= 0 && p.dim >= 0);
+  assert(p.group.empty() || p.group.size() == static_cast<std::size_t>(p.courses));
+  if (p.table) {
+    const auto m = 2u * static_cast<std::size_t>(p.courses);
+    assert(p.table->move.size() == m * m && p.table->from_start.size() == m);
+    assert(!p.finish || p.table->to_finish.size() == m);
+    (void)m;
+    return;
+  }
   assert(p.points.size() == 4u * static_cast<std::size_t>(p.courses * p.dim));
   assert(p.weights.size() == static_cast<std::size_t>(p.dim));
   assert(p.start.size() == static_cast<std::size_t>(p.dim));

@@ -207,8 +207,10 @@ int PickSeed(SeedGraph& g, const SequenceProblem& p, std::int64_t& paths) {
   for (int u = 0; u < m; u += g.Step()) {
     double sum = 0.0;
     for (int v = 0; v < m; v += g.Step()) {
-      sum += MoveCost(p, detail::StartOf(p, detail::NodeVisit(u)),
-                      detail::StartOf(p, detail::NodeVisit(v)));
+      // Start to start; with a move table (no points) the moves into u stand in for it.
+      sum += p.table ? detail::Edge(p, detail::NodeVisit(v), detail::NodeVisit(u))
+                     : MoveCost(p, detail::StartOf(p, detail::NodeVisit(u)),
+                                detail::StartOf(p, detail::NodeVisit(v)));
     }
     if (sum > far_sum) {
       far_sum = sum;

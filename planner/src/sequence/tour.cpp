@@ -27,7 +27,7 @@ Tour::Tour(const SequenceProblem& p, std::vector<Visit> order) : p_(p), t_(std::
 double Tour::Link(int x, int y) const {
   if (y >= Size()) {
     if (x >= 0) return F(t_[x]);
-    return p_.finish ? MoveCost(p_, p_.start.data(), p_.finish->data()) : 0.0;
+    return StartToFinish(p_);
   }
   return In(x, t_[y]);
 }

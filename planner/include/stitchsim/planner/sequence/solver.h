@@ -6,6 +6,7 @@
 // of an off-part move is a norm of the weighted difference of two points. Deterministic:
 // identical input gives identical output, whatever the machine load.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,10 +18,23 @@ namespace stitchsim::planner {
 /// decides), or the Euclidean norm of (w_i d_i) (tool-point distance).
 enum class CostNorm { kL1, kMax, kL2 };
 
-/// The problem for one precedence set. Course i has four points, at rows 4 i + k of `points`
-/// (each row `dim` values): k = 0 start and 1 end when laid forwards, 2 start and 3 end when
-/// laid backwards. Laying a course costs nothing here (its lay-up is fixed); moving from the
-/// end of one course to the start of the next costs Cost(end, start).
+/// Move costs given outright instead of as a norm of two points: a measure that is no norm
+/// (the controller's time law, `--cost timed`) or a matrix instance (TSPLIB's ATSP). Visits are
+/// numbered as nodes u = 2 course + reversed; every array is indexed by node.
+struct MoveTable {
+  std::vector<double> move;  ///< (2 courses)^2: move[u * 2 courses + v], end of u -> start of v
+  std::vector<double> from_start;  ///< 2 courses: start -> start of u
+  std::vector<double> to_finish;   ///< 2 courses: end of u -> finish (zeros without a finish)
+  double start_to_finish = 0.0;    ///< an empty set's path (0 without a finish)
+};
+
+/// The problem for one precedence set (or, with `group`, a run of sets laid in turn). Course i
+/// has four points, at rows 4 i + k of `points` (each row `dim` values): k = 0 start and 1 end
+/// when laid forwards, 2 start and 3 end when laid backwards. Laying a course costs nothing
+/// here (its lay-up is fixed); moving from the end of one course to the start of the next
+/// costs Cost(end, start), or the table's entry when `table` is set (then points, weights,
+/// start and finish are unused and dim may be 0; `finish` still says whether the path ends at
+/// a fixed point).
 struct SequenceProblem {
   int courses = 0;
   int dim = 0;
@@ -30,6 +44,11 @@ struct SequenceProblem {
   bool bidirectional = false;                 ///< false: every course laid forwards
   std::vector<double> start;                  ///< dim values: where the head is before the set
   std::optional<std::vector<double>> finish;  ///< dim values: where it must go after (home)
+  std::shared_ptr<const MoveTable> table;     ///< explicit costs; null: norms of the points
+  /// Per course, its precedence set (0, 1, ...): every course of set g is laid before any of
+  /// set g + 1, so the order is the sets' orders joined and the moves between sets are
+  /// optimised with them (docs/sequence.md). Empty: one set.
+  std::vector<int> group;
 };
 
 struct Visit {
@@ -40,13 +59,14 @@ struct Visit {
 
 /// How a solver stopped, so that an order cut off by a limit says so (ompl's PlannerStatus).
 enum class SolveStatus {
-  kOptimal,    ///< proven optimal (exact)
-  kRoundCap,   ///< a heuristic that ran all the rounds its caps allow (local: max_rounds; the
-               ///< seed's method: patience, depth, iterations): a local optimum, unproven
-  kTimeLimit,  ///< the local search's time limit cut its rounds: the best found so far
-  kGiven,      ///< not solved: the caller's order (`sequence --order`)
+  kOptimal,     ///< proven optimal (exact)
+  kRoundCap,    ///< a heuristic that ran all the rounds its caps allow (local: max_rounds; the
+                ///< seed's method: patience, depth, iterations): a local optimum, unproven
+  kTimeLimit,   ///< the local search's time limit cut its rounds: the best found so far
+  kGiven,       ///< not solved: the caller's order (`sequence --order`)
+  kStagnation,  ///< the local search stopped: its rounds without improvement reached their cap
 };
-/// "optimal", "round-cap", "time-limit", "given".
+/// "optimal", "round-cap", "time-limit", "given", "stagnation".
 const char* ToString(SolveStatus status);
 
 struct SequenceSolution {
@@ -79,18 +99,38 @@ struct SeedMethodOptions {
 };
 SequenceSolution SolveSeedMethod(const SequenceProblem& p, const SeedMethodOptions& o = {});
 
-/// Our solver: nearest-neighbour construction from p.start, then Or-opt (move a chain of
-/// 1..3 courses, either way round) and 2-opt (reverse a stretch, flipping each course's
-/// direction when bidirectional) over k-nearest candidate lists until no move improves or the
-/// time limit. Time-bounded but deterministic: the limit is checked in whole rounds and
-/// `max_rounds` bounds the work, so a loaded machine can stop it earlier only through
-/// `time_limit_s` (0: no time limit; identical output guaranteed).
+/// Our solver (docs/sequence.md, "Ours"): iterated local search. Per start, a construction
+/// (nearest neighbour, or `initial`), a descent over exactly priced moves (Or-opt chains,
+/// stretch reversal with and without flipping the courses, segment insertion, direction
+/// flips) on k-nearest candidate lists, then rounds of kicks each followed by a descent,
+/// kept unless worse. Several independent starts (different kick seeds), the cheapest kept
+/// (ties: the lower start). Deterministic: the work is bounded in rounds, never in seconds:
+/// a start stops when `stagnation` rounds in a row found nothing cheaper or after
+/// `max_rounds`; only `time_limit_s` (0: none) reads the clock, and the answer says which
+/// stop it hit. `jobs` threads run the starts; the answer does not depend on it.
 struct LocalSearchOptions {
-  double time_limit_s = 0.0;
-  int neighbours = 12;
-  int max_rounds = 1000;
+  double time_limit_s = 0.0;    ///< wall-clock stop for the whole call, s (0: none)
+  int neighbours = 10;          ///< candidate list length per visit
+  std::int64_t max_rounds = 0;  ///< kick rounds per start at most (0: automatic, from n)
+  std::int64_t stagnation = 0;  ///< rounds without improvement that end a start (0: automatic)
+  int starts = 0;               ///< independent starts (0: automatic, from n)
+  int jobs = 1;                 ///< threads running the starts (>= 1)
+  std::vector<Visit> initial;   ///< every start begins from this order when given (dominance)
 };
 SequenceSolution SolveLocalSearch(const SequenceProblem& p, const LocalSearchOptions& o = {});
+
+/// A lower bound on the cost of every order of p: any solver's answer costs at least this.
+struct LowerBound {
+  double value = 0.0;           ///< in the problem's cost units
+  std::string method;           ///< how it was found ("held-karp", "exact", "trivial")
+  std::int64_t iterations = 0;  ///< method-specific work count (reported)
+  double seconds = 0.0;         ///< wall time (reported, never used to decide)
+};
+/// Deterministic work bound of the lower bound's computation.
+struct BoundOptions {
+  std::int64_t max_work = 300'000'000;  ///< edge evaluations at most
+};
+LowerBound ComputeLowerBound(const SequenceProblem& p, const BoundOptions& o = {});
 
 /// Exact (Held-Karp dynamic programming over subsets and the last course's direction), for
 /// at most kMaxExactCourses courses; nullopt above.
