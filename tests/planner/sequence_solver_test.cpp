@@ -154,6 +154,14 @@ TEST(SequenceSolver, ExactAgreesWithBruteForce) {
   EXPECT_EQ(cases, 72);
 }
 
+// A budget well below the default (1,500 rounds without improvement end a start): the tests
+// stay fast, and the default only searches longer from the same start.
+LocalSearchOptions Quick() {
+  LocalSearchOptions o;
+  o.stagnation = 150;
+  return o;
+}
+
 TEST(SequenceSolver, LocalSearchWithinOnePercentOfExactOnGeneratedSets) {
   Gen g{std::mt19937_64(2026)};
   double worst_local = 0, worst_seed = 0;
@@ -166,7 +174,9 @@ TEST(SequenceSolver, LocalSearchWithinOnePercentOfExactOnGeneratedSets) {
           const SequenceProblem p = g.Make(kind, n, norm, (mode & 1) != 0, (mode & 2) != 0);
           const auto exact = SolveExact(p);
           ASSERT_TRUE(exact.has_value());
-          const SequenceSolution local = SolveLocalSearch(p);
+          LocalSearchOptions budget;
+          budget.stagnation = 400;  // below the default's 1,500: it only searches longer
+          const SequenceSolution local = SolveLocalSearch(p, budget);
           const SequenceSolution seed = SolveSeedMethod(p);
           ExpectValid(p, *exact);
           ExpectValid(p, local);
@@ -193,12 +203,19 @@ TEST(SequenceSolver, Deterministic) {
   Gen g{std::mt19937_64(7)};
   for (bool bidirectional : {false, true}) {
     const SequenceProblem p = g.Make(0, 300, CostNorm::kL1, bidirectional, false);
-    const SequenceSolution a = SolveLocalSearch(p), b = SolveLocalSearch(p);
+    const SequenceSolution a = SolveLocalSearch(p, Quick()), b = SolveLocalSearch(p, Quick());
     EXPECT_EQ(a.order, b.order);
     EXPECT_EQ(a.cost, b.cost);
-    LocalSearchOptions generous;
+    LocalSearchOptions generous = Quick();
     generous.time_limit_s = 1000;
     EXPECT_EQ(SolveLocalSearch(p, generous).order, a.order);
+    // The starts run on threads; how many does not change the answer.
+    LocalSearchOptions threaded = Quick();
+    threaded.starts = 3;
+    threaded.jobs = 2;
+    LocalSearchOptions serial = threaded;
+    serial.jobs = 1;
+    EXPECT_EQ(SolveLocalSearch(p, threaded).order, SolveLocalSearch(p, serial).order);
     const SequenceSolution s1 = SolveSeedMethod(p), s2 = SolveSeedMethod(p);
     EXPECT_EQ(s1.order, s2.order);
     ExpectValid(p, a);
@@ -217,7 +234,7 @@ TEST(SequenceSolver, TimeLimitCutsWholeRounds) {
   const SequenceSolution a = SolveLocalSearch(p, cut), b = SolveLocalSearch(p, none);
   ExpectValid(p, a);
   EXPECT_EQ(a.order, b.order);
-  EXPECT_GE(a.cost, SolveLocalSearch(p).cost);
+  EXPECT_GE(a.cost, SolveLocalSearch(p, Quick()).cost);
   // The cut says so; the run with no rounds to run finished them all.
   EXPECT_EQ(a.status, SolveStatus::kTimeLimit);
   EXPECT_EQ(b.status, SolveStatus::kRoundCap);
@@ -319,8 +336,73 @@ TEST(SequenceSolver, LimitsAndEdgeCases) {
   // Larger unidirectional sets: still every course once, forwards.
   for (int kind = 0; kind < 3; ++kind) {
     const SequenceProblem p = g.Make(kind, 120, CostNorm::kL2, false, true);
-    ExpectValid(p, SolveLocalSearch(p));
+    ExpectValid(p, SolveLocalSearch(p, Quick()));
     ExpectValid(p, SolveSeedMethod(p));
+  }
+}
+
+}  // namespace
+}  // namespace stitchsim::planner
+
+namespace stitchsim::planner {
+namespace {
+
+// Precedence groups (the sets of one programme optimised together): the answer lays every
+// group's courses before the next group's, and it equals brute force over the orders that do
+// so (each group permuted on its own, every direction choice), priced independently.
+TEST(SequenceSolver, GroupsAreLaidInTurnAndTheirJoinsOptimised) {
+  Gen g{std::mt19937_64(11)};
+  int cases = 0;
+  for (int rep = 0; rep < 6; ++rep) {
+    const bool bidirectional = rep % 2 == 1;
+    SequenceProblem p = g.Make(rep % 3, 7, CostNorm::kL1, bidirectional, rep >= 3);
+    p.group = {1, 0, 2, 1, 0, 2, 1};  // three groups of 2, 3 and 2 courses
+    const SequenceSolution s = SolveLocalSearch(p, Quick());
+    ExpectValid(p, s);
+    for (std::size_t i = 1; i < s.order.size(); ++i) {
+      EXPECT_LE(p.group[s.order[i - 1].course], p.group[s.order[i].course]) << "rep " << rep;
+    }
+    // Brute force: permutations sorted by group first are exactly the allowed orders.
+    std::vector<int> perm{1, 4, 0, 3, 6, 2, 5};  // groups 0, 1, 2 in turn
+    double best = INFINITY;
+    const int flips = bidirectional ? 1 << p.courses : 1;
+    auto next_in_groups = [&] {
+      // Advance group 2's slice, carrying into group 1's, then group 0's (odometer).
+      const int cut[4] = {0, 2, 5, 7};
+      for (int k = 2; k >= 0; --k) {
+        if (std::next_permutation(perm.begin() + cut[k], perm.begin() + cut[k + 1])) return true;
+      }
+      return false;
+    };
+    for (int k = 0; k < 3; ++k) {
+      const int cut[4] = {0, 2, 5, 7};
+      std::sort(perm.begin() + cut[k], perm.begin() + cut[k + 1]);
+    }
+    do {
+      for (int f = 0; f < flips; ++f) {
+        std::vector<Visit> order;
+        for (int i = 0; i < p.courses; ++i) order.push_back({perm[i], ((f >> i) & 1) != 0});
+        best = std::min(best, IndependentCost(p, order));
+      }
+    } while (next_in_groups());
+    EXPECT_NEAR(s.cost, best, 1e-9 * (1 + best)) << "rep " << rep;
+    ++cases;
+  }
+  EXPECT_EQ(cases, 6);
+}
+
+// Bidirectional lay-up allows every forward-only order: its answer is never dearer, on every
+// kind of generated set (the search starts from the forward-only answer).
+TEST(SequenceSolver, BidirectionalNeverWorseThanForwardOnly) {
+  Gen g{std::mt19937_64(12)};
+  for (int kind = 0; kind < 3; ++kind) {
+    for (CostNorm norm : kNorms) {
+      SequenceProblem p = g.Make(kind, 60, norm, false, kind == 1);
+      const SequenceSolution forward = SolveLocalSearch(p, Quick());
+      p.bidirectional = true;
+      const SequenceSolution both = SolveLocalSearch(p, Quick());
+      EXPECT_LE(both.cost, forward.cost) << "kind " << kind;
+    }
   }
 }
 

@@ -1,23 +1,27 @@
-// Our ordering solver: nearest-neighbour construction, then a descent over Or-opt, 2-opt and
-// segment-insertion moves priced exactly, then perturbation. The lead copies this block into
+// Our ordering solver: iterated local search. The lead copies this block into
 // docs/sequence.md.
 //
 // Construction. From p.start, repeatedly the cheapest move to an unvisited visit (each course
-// forwards, and backwards when bidirectional); ties by course, then forwards first.
+// forwards, and backwards when bidirectional; with groups, only courses of the earliest
+// group not yet finished); ties by course, then forwards first. Or the caller's order.
 //
-// Moves (Tour, tour.h, prices each exactly in O(1) from prefix sums of the tour's
-// forward cost and of its backwards traversal; costs are not symmetric):
-// - Or-opt: a chain of 1..3 courses moved elsewhere, as it was or, when bidirectional, laid
-//   backwards (order reversed, every course flipped).
-// - 2-opt (bidirectional only): a stretch reversed, every course in it flipped; a stretch of
-//   one course is a single flip.
+// Moves (Tour, tour.h, prices each exactly in O(1) from prefix sums of the tour's forward
+// cost, of its backwards traversal with every course as laid, and with every course flipped;
+// costs are not symmetric):
+// - Or-opt: a chain of 1..3 courses (starting at the course popped) moved elsewhere, as it was,
+//   in reverse order (each course still laid its way), or, when bidirectional, laid backwards
+//   (reverse order, each flipped).
+// - Stretch reversal (2-opt), in both lay-up modes: a stretch visited in reverse order with
+//   each course still laid its way (legal with forward-only lay-up), or, when bidirectional,
+//   with every course flipped (the stretch driven backwards; one course: a single flip).
 // - Segment insertion (both modes): a stretch of any length moved elsewhere unchanged (the
-//   3-opt "or-3opt" move). It replaces 2-opt when NOT bidirectional, where a stretch cannot be
-//   laid backwards.
+//   3-opt "or-3opt" move).
 // Candidates come from k-nearest lists per visit (a course in one direction): the
-// options.neighbours visits of other courses with the cheapest move into it, and out of it
-// (O(n^2) moves to build, once). A move is tried only if one of its new links is from such a
-// list and joins visits as the tour lays them now (plus moves to the very start and end).
+// options.neighbours visits of other courses (same or neighbouring group) with the cheapest
+// move into it, and out of it (O(n^2) moves to build, once). A move is tried only if one of
+// its new links is from such a list and joins visits as the tour lays them now (plus moves
+// to the very start and end). With groups a move never takes a course out of its group's
+// block of positions, so the moves between groups are optimised with the rest.
 //
 // Descent. A FIFO queue of courses (initially in tour order); for the course popped, every
 // candidate move around it is priced and the best improving one (ties: first found) applied;
@@ -27,34 +31,40 @@
 // anew for the order found, exactly (a shortest path over two states per position, O(n));
 // if that saves anything the changed courses are queued and the descent resumes.
 //
-// Perturbation. Then, for at most options.max_rounds rounds: 1..3 kicks (each a random
-// stretch of 1..S courses, S = min(10, n / 2), moved to a random place at most 2 S positions
-// away, flipped with probability 1/2 when bidirectional: a segment kick that contains the
-// double-bridge of two adjacent stretches; draws from std::mt19937_64 with a fixed seed), a
-// descent from the kicks' courses; the result replaces the current tour unless it is worse
-// (equal cost is accepted, so plateaus, common under the max norm, can be crossed), and the
-// cheapest tour seen is returned.
-// A move or kick counts as an improvement only if it saves more than 1e-12 (1 + the
-// nearest-neighbour tour's cost).
+// Kicks. Each round: 1..3 kicks (each a random stretch of 1..S courses, S = min(30, n / 2),
+// moved to a random place at most 2 S positions away, within its block, laid as it was, in
+// reverse order or, bidirectional, flipped: a segment kick that contains the double bridge
+// of two adjacent stretches), then a descent from the kicks' courses; the result replaces the
+// current tour unless it is worse (equal cost is accepted, so plateaus, common under the max
+// norm, can be crossed). A move or kick counts as an improvement only if it saves more than
+// 1e-12 (1 + the construction's cost).
+//
+// Starts and stops. options.starts independent starts (default 2), each from the same
+// construction with its own kick sequence (std::mt19937_64 seeded with the start's number);
+// the cheapest answer wins, ties to the lower start. A start stops when `stagnation` rounds in
+// a row found nothing cheaper (default max(1500, 2 n)) or after max_rounds (default 50 times
+// that): a count of rounds, so the answer is the same on any machine. options.jobs threads
+// run the starts; the answer does not depend on how many. Only time_limit_s reads the clock
+// (between rounds); when it cuts a start, the answer is the best found so far and says so.
+//
+// Dominance. Bidirectional lay-up allows every forward-only order, so a bidirectional search
+// without a given order first solves the forward-only problem (the same search, with the same
+// options, as a forward-only call), then begins its first start at that answer (the others
+// at its own construction, for variety): it can only end at or below the forward-only answer. With
+// a time limit the forward-only phase gets a third of it (then the guarantee holds only when no
+// limit cut either run).
 //
 // Work and memory. Up to 1,024 courses every move cost is tabled once ((2n)^2 doubles, 32 MiB
-// at 1,024); above, costs are computed when needed. Building the lists is O(n^2); a move
-// is priced in O(1) and applied in O(n). Release build, 2-core machine, plate of 1,000
-// courses, bidirectional, L1 over 8 axes, default options: about 0.25 s for the whole call
-// (bench/sequence_solver_bench.cpp).
-//
-// Determinism and the time limit. Everything above is a function of the input; the clock is
-// read only between rounds. Without a time limit (0) or when the rounds run out before it, the
-// output is identical on every run. When the limit cuts the rounds, the answer is the best
-// found so far; it is still a descent's local optimum and never worse than the first one, but
-// how many kicks it saw depends on the machine's speed (SequenceSolution::iterations reports
-// the moves applied plus the rounds run).
+// at 1,024; a MoveTable problem brings its own); above, costs are computed when needed.
+// Building the lists is O(n^2); a move is priced in O(1) and applied in O(n).
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <deque>
 #include <limits>
 #include <random>
+#include <thread>
 
 #include "detail.h"
 #include "stitchsim/planner/sequence/solver.h"
@@ -64,24 +74,39 @@ namespace stitchsim::planner {
 
 namespace {
 
+using detail::Stretch;
 using detail::Tour;
 using detail::TourMove;
 using Kind = TourMove::Kind;
 
 constexpr std::uint64_t kKickSeed = 0x5eed004;
 constexpr int kMaxChain = 3;
-constexpr int kMaxKickStretch = 10;
+constexpr int kMaxKickStretch = 30;
 constexpr std::uint64_t kMaxKicks = 3;
+constexpr int kDefaultStarts = 2;
+constexpr std::int64_t kMinStagnation = 1500;
+constexpr std::int64_t kStagnationPerCourse = 2;
+constexpr std::int64_t kRoundsPerStagnation = 50;
+
+int GroupOf(const SequenceProblem& p, int course) { return p.group.empty() ? 0 : p.group[course]; }
 
 std::vector<Visit> NearestNeighbourTour(const SequenceProblem& p) {
   std::vector<Visit> order;
   std::vector<char> used(static_cast<std::size_t>(p.courses), 0);
   const int dirs = p.bidirectional ? 2 : 1;
+  std::vector<int> left;  // courses not yet laid, per group
+  for (int c = 0; c < p.courses; ++c) {
+    const int g = GroupOf(p, c);
+    if (g >= static_cast<int>(left.size())) left.resize(static_cast<std::size_t>(g) + 1, 0);
+    ++left[static_cast<std::size_t>(g)];
+  }
+  std::size_t group = 0;
   for (int step = 0; step < p.courses; ++step) {
+    while (left[group] == 0) ++group;
     Visit best{};
     double best_cost = std::numeric_limits<double>::infinity();
     for (int c = 0; c < p.courses; ++c) {
-      if (used[c]) continue;
+      if (used[c] || GroupOf(p, c) != static_cast<int>(group)) continue;
       for (int r = 0; r < dirs; ++r) {
         const Visit v{c, r == 1};
         const double cost =
@@ -93,13 +118,15 @@ std::vector<Visit> NearestNeighbourTour(const SequenceProblem& p) {
       }
     }
     used[best.course] = 1;
+    --left[group];
     order.push_back(best);
   }
   return order;
 }
 
-/// For every visit node (2 course + reversed), the k nodes of other courses with the cheapest
-/// move into it (in) and out of it (out), ties by node; forward nodes only if unidirectional.
+/// For every visit node (2 course + reversed), the k nodes of other courses of the same or a
+/// neighbouring group with the cheapest move into it (in) and out of it (out), ties by node;
+/// forward nodes only if unidirectional.
 struct NodeLists {
   std::vector<std::vector<int>> in, out;
 };
@@ -116,7 +143,7 @@ NodeLists BuildNodeLists(const Tour& tour, const SequenceProblem& p, int k) {
     from.clear();
     const Visit va = detail::NodeVisit(a);
     for (int b = 0; b < m; b += step) {
-      if (a / 2 == b / 2) continue;
+      if (a / 2 == b / 2 || std::abs(GroupOf(p, a / 2) - GroupOf(p, b / 2)) > 1) continue;
       const Visit vb = detail::NodeVisit(b);
       into.push_back({tour.Move(vb, va), b});
       from.push_back({tour.Move(va, vb), b});
@@ -194,20 +221,24 @@ class Descent {
     const int x = tour_.PositionOf(v.course);
     return tour_.At(x).reversed == v.reversed ? x : -1;
   }
-  void Offer(Kind kind, int i, int k, int g, bool flip, double delta) {
-    if (delta < best_.delta) best_ = TourMove{kind, i, k, g, flip, delta};
+  int WhereNode(int node) const { return Where(detail::NodeVisit(node)); }
+  void Offer(Kind kind, int i, int k, int g, Stretch how, double delta) {
+    if (delta < best_.delta) best_ = TourMove{kind, i, k, g, how, delta};
   }
-  void TryReverse(int i, int k) {
-    if (i < 0 || k >= tour_.Size() || i > k) return;
-    Offer(Kind::kReverse, i, k, 0, false, tour_.ReverseDelta(i, k));
+  void TryReverse(int i, int k, Stretch how) {
+    if (!tour_.CanTurn(i, k) || (how == Stretch::kReverse && i == k)) return;
+    if (how == Stretch::kFlip && !p_.bidirectional) return;
+    Offer(Kind::kReverse, i, k, 0, how, tour_.ReverseDelta(i, k, how));
   }
-  void TryChain(int i, int k, int g, bool flip) {
-    const int n = tour_.Size();
-    if (i < 0 || k >= n || i > k || g < -1 || g >= n || (g >= i - 1 && g <= k)) return;
-    if (flip && !p_.bidirectional) return;
-    Offer(Kind::kChain, i, k, g, flip, tour_.ChainDelta(i, k, g, flip));
+  void TryChain(int i, int k, int g, Stretch how) {
+    if (!tour_.CanMove(i, k, g)) return;
+    if (how == Stretch::kFlip && !p_.bidirectional) return;
+    if (how == Stretch::kReverse && i == k) return;
+    Offer(Kind::kChain, i, k, g, how, tour_.ChainDelta(i, k, g, how));
   }
   void TryAround(int x);
+  void TryReversals(int x);
+  void TryFlips(int x);
   void TryOrOpt(int i, int k);
   void TrySegments(int x);
 
@@ -221,48 +252,84 @@ class Descent {
 };
 
 void Descent::TryAround(int x) {
+  TryReversals(x);
+  if (p_.bidirectional) TryFlips(x);
+  for (int len = 1; len <= kMaxChain; ++len) TryOrOpt(x, x + len - 1);
+  TrySegments(x);
+}
+
+// A stretch visited in reverse order, each course laid its own way: new links
+// t[i-1] -> t[k] and t[i] -> t[k+1], one of them from the lists with the course at x as an end.
+void Descent::TryReversals(int x) {
+  const Visit cv = tour_.At(x);
+  const int c = detail::VisitNode(cv);
+  const int lo = tour_.BlockBegin(x), hi = tour_.BlockEnd(x);
+  TryReverse(lo, x, Stretch::kReverse);
+  TryReverse(x, hi, Stretch::kReverse);
+  const double out = tour_.CostOutOf(x), in = tour_.CostInto(x);
+  for (int v : lists_.out[c]) {  // new link c -> v replaces c's way out
+    if (tour_.Move(cv, detail::NodeVisit(v)) >= out) break;
+    const int y = WhereNode(v);
+    if (y > x) TryReverse(x + 1, y, Stretch::kReverse);  // c -> t[k]: stretch x+1..y
+    if (y > x) TryReverse(x, y - 1, Stretch::kReverse);  // t[i] = c -> t[k+1] = v
+  }
+  for (int u : lists_.in[c]) {  // new link u -> c replaces c's way in
+    if (tour_.Move(detail::NodeVisit(u), cv) >= in) break;
+    const int y = WhereNode(u);
+    if (y >= 0 && y < x) TryReverse(y, x - 1, Stretch::kReverse);  // t[i] = u -> t[k+1] = c
+    if (y >= 0 && y < x) TryReverse(y + 1, x, Stretch::kReverse);  // t[i-1] = u -> t[k] = c
+  }
+}
+
+// Bidirectional: a stretch driven backwards, every course flipped.
+void Descent::TryFlips(int x) {
   const int n = tour_.Size();
   const Visit c = tour_.At(x);
-  if (p_.bidirectional) {
-    TryReverse(x, x);
-    TryReverse(0, x);
-    TryReverse(x, n - 1);
-    for (int v : lists_.out[detail::VisitNode(c)]) {
-      TryReverse(x + 1, Where(detail::Flip(detail::NodeVisit(v))));  // c -> flipped stretch
-    }
-    for (int u : lists_.in[detail::VisitNode(c)]) {
-      TryReverse(Where(detail::Flip(detail::NodeVisit(u))), x - 1);  // flipped stretch -> c
-    }
-    for (int v : lists_.out[detail::VisitNode(detail::Flip(c))]) {
-      TryReverse(x, Where(detail::NodeVisit(v)) - 1);  // stretch from c, flipped -> v
-    }
-    for (int u : lists_.in[detail::VisitNode(detail::Flip(c))]) {
-      TryReverse(Where(detail::NodeVisit(u)) + 1, x);  // u -> stretch to c, flipped
-    }
+  TryReverse(x, x, Stretch::kFlip);
+  TryReverse(std::max(0, tour_.BlockBegin(x)), x, Stretch::kFlip);
+  TryReverse(x, std::min(n - 1, tour_.BlockEnd(x)), Stretch::kFlip);
+  for (int v : lists_.out[detail::VisitNode(c)]) {
+    TryReverse(x + 1, Where(detail::Flip(detail::NodeVisit(v))), Stretch::kFlip);
   }
-  for (int len = 1; len <= kMaxChain; ++len) {
-    TryOrOpt(x, x + len - 1);
-    if (len > 1) TryOrOpt(x - len + 1, x);
+  for (int u : lists_.in[detail::VisitNode(c)]) {
+    TryReverse(Where(detail::Flip(detail::NodeVisit(u))), x - 1, Stretch::kFlip);
   }
-  TrySegments(x);
+  for (int v : lists_.out[detail::VisitNode(detail::Flip(c))]) {
+    const int y = WhereNode(v);
+    if (y >= 0) TryReverse(x, y - 1, Stretch::kFlip);
+  }
+  for (int u : lists_.in[detail::VisitNode(detail::Flip(c))]) {
+    const int y = WhereNode(u);
+    if (y >= 0) TryReverse(y + 1, x, Stretch::kFlip);
+  }
 }
 
 void Descent::TryOrOpt(int i, int k) {
   const int n = tour_.Size();
   if (i < 0 || k >= n) return;
-  for (int f = 0; f < (p_.bidirectional ? 2 : 1); ++f) {
-    const bool flip = f == 1;
-    TryChain(i, k, -1, flip);
-    TryChain(i, k, n - 1, flip);
-    const Visit first = flip ? detail::Flip(tour_.At(k)) : tour_.At(i);
-    const Visit last = flip ? detail::Flip(tour_.At(i)) : tour_.At(k);
+  // The chain's links with the tour: a new link into it must beat the one into it now, a new
+  // link out of it the one out of it now (the gain criterion on sorted lists).
+  const double cut_in = std::max(tour_.CostInto(i), tour_.CostOutOf(k)), cut_out = cut_in;
+  for (const Stretch how : {Stretch::kKeep, Stretch::kReverse, Stretch::kFlip}) {
+    if ((how == Stretch::kFlip && !p_.bidirectional) || (how == Stretch::kReverse && i == k))
+      continue;
+    TryChain(i, k, tour_.BlockBegin(i) - 1, how);
+    TryChain(i, k, tour_.BlockEnd(i), how);
+    const Visit first = how == Stretch::kKeep      ? tour_.At(i)
+                        : how == Stretch::kReverse ? tour_.At(k)
+                                                   : detail::Flip(tour_.At(k));
+    const Visit last = how == Stretch::kKeep      ? tour_.At(k)
+                       : how == Stretch::kReverse ? tour_.At(i)
+                                                  : detail::Flip(tour_.At(i));
     for (int u : lists_.in[detail::VisitNode(first)]) {
-      const int g = Where(detail::NodeVisit(u));
-      if (g >= 0) TryChain(i, k, g, flip);
+      if (tour_.Move(detail::NodeVisit(u), first) >= cut_in) break;
+      const int g = WhereNode(u);
+      if (g >= 0) TryChain(i, k, g, how);
     }
     for (int v : lists_.out[detail::VisitNode(last)]) {
-      const int h = Where(detail::NodeVisit(v));
-      if (h >= 0) TryChain(i, k, h - 1, flip);
+      if (tour_.Move(last, detail::NodeVisit(v)) >= cut_out) break;
+      const int h = WhereNode(v);
+      if (h >= 0) TryChain(i, k, h - 1, how);
     }
   }
 }
@@ -271,20 +338,30 @@ void Descent::TryOrOpt(int i, int k) {
 // from the lists, with the course at x as the stretch's first or last.
 void Descent::TrySegments(int x) {
   const int n = tour_.Size();
-  const int c = detail::VisitNode(tour_.At(x));
+  const Visit cv = tour_.At(x);
+  const int c = detail::VisitNode(cv);
+  const double in = tour_.CostInto(x), out = tour_.CostOutOf(x);
   for (int u : lists_.in[c]) {  // stretch starts at x, goes after g
-    const int g = Where(detail::NodeVisit(u));
+    if (tour_.Move(detail::NodeVisit(u), cv) >= in) break;
+    const int g = WhereNode(u);
     if (g < 0 || g + 1 >= n) continue;
-    for (int w : lists_.in[detail::VisitNode(tour_.At(g + 1))]) {
-      TryChain(x, Where(detail::NodeVisit(w)), g, false);
+    const Visit next = tour_.At(g + 1);
+    const double next_in = tour_.CostInto(g + 1);
+    for (int w : lists_.in[detail::VisitNode(next)]) {
+      if (tour_.Move(detail::NodeVisit(w), next) >= next_in) break;
+      TryChain(x, WhereNode(w), g, Stretch::kKeep);
     }
   }
   for (int v : lists_.out[c]) {  // stretch ends at x, goes after h
-    const int h = Where(detail::NodeVisit(v)) - 1;
+    if (tour_.Move(cv, detail::NodeVisit(v)) >= out) break;
+    const int h = WhereNode(v) - 1;
     if (h < 0) continue;
-    for (int w : lists_.out[detail::VisitNode(tour_.At(h))]) {
-      const int i = Where(detail::NodeVisit(w));
-      if (i >= 0) TryChain(i, x, h, false);
+    const Visit prev = tour_.At(h);
+    const double prev_out = tour_.CostOutOf(h);
+    for (int w : lists_.out[detail::VisitNode(prev)]) {
+      if (tour_.Move(prev, detail::NodeVisit(w)) >= prev_out) break;
+      const int i = WhereNode(w);
+      if (i >= 0) TryChain(i, x, h, Stretch::kKeep);
     }
   }
 }
@@ -296,66 +373,171 @@ void Descent::PushEnds(const TourMove& m) {
   }
 }
 
-/// A kick: a random stretch of 1..max_stretch courses moved at most 2 max_stretch positions
-/// away, flipped with probability 1/2 when bidirectional; kNone if the draw is not a move.
+/// A kick: a random stretch of 1..max_stretch courses of one block moved at most
+/// 2 max_stretch positions away within it, laid as it was, reversed or (bidirectional)
+/// flipped; kNone if the draw is not a move.
 TourMove RandomKick(const Tour& tour, std::mt19937_64& rng, int max_stretch, bool bidirectional) {
   const auto draw = [&rng](int count) {
     return static_cast<int>(rng() % static_cast<std::uint64_t>(std::max(1, count)));
   };
   const int n = tour.Size();
-  const int len = 1 + draw(std::min(max_stretch, n - 1));
-  const int i = draw(n - len + 1);
-  const int k = i + len - 1;
+  const int i = draw(n);
+  const int lo = tour.BlockBegin(i), hi = tour.BlockEnd(i);
+  const int size = hi - lo + 1;
+  if (size < 3) return TourMove{};
+  const int len = 1 + draw(std::min(max_stretch, size - 1));
+  const int k = std::min(hi, i + len - 1);
   const int reach = 2 * max_stretch;
-  const int lo = std::max(-1, i - 1 - reach), hi = std::min(n - 1, k + reach);
-  int g = lo + draw(hi - lo + 1);
-  const bool flip = bidirectional && (rng() & 1u) != 0;
+  const int glo = std::max(lo - 1, i - 1 - reach), ghi = std::min(hi, k + reach);
+  int g = glo + draw(ghi - glo + 1);
+  const std::uint64_t mode = rng() % (bidirectional ? 3u : 2u);
+  const Stretch how = mode == 0 ? Stretch::kKeep : mode == 1 ? Stretch::kReverse : Stretch::kFlip;
   if (g >= i - 1 && g <= k) g = g - i + 1 < k - g ? i - 2 : k + 1;  // step out of the stretch
-  if (g < -1 || g >= n) return TourMove{};
-  TourMove m{Kind::kChain, i, k, g, flip, 0.0};
-  m.delta = tour.ChainDelta(i, k, g, flip);
+  if (!tour.CanMove(i, k, g)) return TourMove{};
+  TourMove m{Kind::kChain, i, k, g, (how == Stretch::kReverse && i == k) ? Stretch::kKeep : how,
+             0.0};
+  m.delta = tour.ChainDelta(i, k, g, m.how);
   return m;
+}
+
+/// One start's answer.
+struct StartResult {
+  std::vector<Visit> order;
+  double cost = 0.0;
+  std::int64_t iterations = 0;
+  SolveStatus status = SolveStatus::kStagnation;
+};
+
+/// The shared, read-only part of a search: the problem, the construction, the lists.
+struct SearchSetup {
+  const SequenceProblem& p;
+  std::vector<Visit> initial;  ///< where start 0 begins (every start, when `others` is empty)
+  std::vector<Visit> others;   ///< where starts 1, 2, ... begin, if not at `initial`
+  double initial_cost = 0.0;
+  double eps = 0.0;
+  NodeLists lists;
+  std::int64_t stagnation = 0, max_rounds = 0;
+  int max_stretch = 1;
+  double time_limit_s = 0.0;
+  std::chrono::steady_clock::time_point t0{};
+};
+
+StartResult RunStart(const SearchSetup& setup, int start) {
+  const SequenceProblem& p = setup.p;
+  StartResult r;
+  Tour tour(p, start > 0 && !setup.others.empty() ? setup.others : setup.initial);
+  Descent descent(p, tour, setup.lists, setup.eps);
+  for (const Visit& v : tour.Order()) descent.Push(v.course);
+  r.iterations += descent.Run();
+  std::mt19937_64 rng(kKickSeed + static_cast<std::uint64_t>(start));
+  std::vector<Visit> best = tour.Order(), saved;
+  double best_cost = tour.Cost();
+  std::int64_t since_better = 0;
+  for (std::int64_t round = 0; p.courses >= 3; ++round) {
+    if (since_better >= setup.stagnation) break;
+    if (round >= setup.max_rounds) {
+      r.status = SolveStatus::kRoundCap;
+      break;
+    }
+    if (setup.time_limit_s > 0 && detail::SecondsSince(setup.t0) >= setup.time_limit_s) {
+      r.status = SolveStatus::kTimeLimit;
+      break;
+    }
+    ++r.iterations;
+    ++since_better;
+    saved = tour.Order();
+    const double saved_cost = tour.Cost();
+    for (int kicks = 1 + static_cast<int>(rng() % kMaxKicks); kicks > 0; --kicks) {
+      const TourMove kick = RandomKick(tour, rng, setup.max_stretch, p.bidirectional);
+      descent.PushEnds(kick);
+      tour.Apply(kick);
+    }
+    r.iterations += descent.Run();
+    if (tour.Cost() > saved_cost + setup.eps) {
+      tour.Restore(saved, saved_cost);
+    } else if (tour.Cost() < best_cost - setup.eps) {
+      best = tour.Order();
+      best_cost = tour.Cost();
+      since_better = 0;
+    }
+  }
+  r.order = std::move(best);
+  r.cost = PathCost(p, r.order);
+  return r;
+}
+
+/// The iterated local search from `initial` (or the construction), every start on `jobs`
+/// threads; the cheapest start's answer.
+/// `from`: where start 0 begins, the others at the construction (null: every start at
+/// o.initial, or at the construction).
+SequenceSolution Search(const SequenceProblem& p, const LocalSearchOptions& o,
+                        std::chrono::steady_clock::time_point t0,
+                        const std::vector<Visit>* from = nullptr) {
+  SequenceSolution s = detail::BeginSolution(p, "local", SolveStatus::kStagnation);
+  const int n = p.courses;
+  SearchSetup setup{p, {}, {}, 0.0, 0.0, {}, 0, 0, 1, 0.0, t0};
+  setup.initial = o.initial.empty() ? NearestNeighbourTour(p) : o.initial;
+  if (from != nullptr) {
+    setup.others = std::move(setup.initial);
+    setup.initial = *from;
+  }
+  setup.initial_cost = PathCost(p, setup.initial);
+  setup.eps = 1e-12 * (1.0 + setup.initial_cost);
+  {
+    const Tour probe(p, setup.initial);
+    setup.lists = BuildNodeLists(probe, p, o.neighbours);
+  }
+  setup.stagnation =
+      o.stagnation > 0 ? o.stagnation : std::max(kMinStagnation, kStagnationPerCourse * n);
+  setup.max_rounds = o.max_rounds >= 0 ? o.max_rounds : kRoundsPerStagnation * setup.stagnation;
+  setup.max_stretch = std::min(kMaxKickStretch, std::max(1, n / 2));
+  setup.time_limit_s = o.time_limit_s;
+  setup.t0 = t0;
+  const int starts = std::max(1, o.starts > 0 ? o.starts : kDefaultStarts);
+  std::vector<StartResult> results(static_cast<std::size_t>(starts));
+  std::atomic<int> next{0};
+  const auto worker = [&] {
+    for (int k = next++; k < starts; k = next++) results[k] = RunStart(setup, k);
+  };
+  const int threads = std::clamp(o.jobs, 1, starts);
+  std::vector<std::thread> pool;
+  for (int j = 1; j < threads; ++j) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  std::size_t best = 0;
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    s.iterations += results[k].iterations;
+    if (results[k].cost < results[best].cost) best = k;
+    // The stop that says the most: a time limit over a round cap over stagnation.
+    if (results[k].status == SolveStatus::kTimeLimit ||
+        (results[k].status == SolveStatus::kRoundCap && s.status != SolveStatus::kTimeLimit))
+      s.status = results[k].status;
+  }
+  s.order = std::move(results[best].order);
+  s.cost = results[best].cost;
+  return s;
 }
 
 }  // namespace
 
 SequenceSolution SolveLocalSearch(const SequenceProblem& p, const LocalSearchOptions& o) {
-  SequenceSolution s = detail::BeginSolution(p, "local", SolveStatus::kRoundCap);
   const auto t0 = std::chrono::steady_clock::now();
-  const int n = p.courses;
-  Tour tour(p, NearestNeighbourTour(p));
-  const double eps = 1e-12 * (1.0 + tour.Cost());
-  const NodeLists lists = BuildNodeLists(tour, p, o.neighbours);
-  Descent descent(p, tour, lists, eps);
-  for (const Visit& v : tour.Order()) descent.Push(v.course);
-  s.iterations += descent.Run();
-  std::mt19937_64 rng(kKickSeed);
-  const int max_stretch = std::min(kMaxKickStretch, std::max(1, n / 2));
-  std::vector<Visit> best = tour.Order(), saved;
-  double best_cost = tour.Cost();
-  for (int round = 0; n >= 3 && round < o.max_rounds; ++round) {
-    if (o.time_limit_s > 0 && detail::SecondsSince(t0) >= o.time_limit_s) {
-      s.status = SolveStatus::kTimeLimit;
-      break;
-    }
-    ++s.iterations;
-    saved = tour.Order();
-    const double saved_cost = tour.Cost();
-    for (int kicks = 1 + static_cast<int>(rng() % kMaxKicks); kicks > 0; --kicks) {
-      const TourMove kick = RandomKick(tour, rng, max_stretch, p.bidirectional);
-      descent.PushEnds(kick);
-      tour.Apply(kick);
-    }
-    s.iterations += descent.Run();
-    if (tour.Cost() > saved_cost + eps) {
-      tour.Restore(saved, saved_cost);
-    } else if (tour.Cost() < best_cost - eps) {
-      best = tour.Order();
-      best_cost = tour.Cost();
-    }
+  SequenceSolution s;
+  if (p.bidirectional && o.initial.empty() && p.courses >= 2) {
+    // Dominance: every forward-only order is a bidirectional one; start from the best of them.
+    SequenceProblem forward = p;
+    forward.bidirectional = false;
+    // With a time limit the forward-only phase gets a third of it: the bidirectional search
+    // that follows is the one that uses the freedom.
+    LocalSearchOptions once = o;
+    once.time_limit_s = o.time_limit_s / 3.0;
+    const SequenceSolution first = Search(forward, once, t0);
+    s = Search(p, o, t0, &first.order);
+    s.iterations += first.iterations;
+    if (first.status == SolveStatus::kTimeLimit) s.status = SolveStatus::kTimeLimit;
+  } else {
+    s = Search(p, o, t0);
   }
-  s.order = best;
-  s.cost = PathCost(p, s.order);
   s.seconds = detail::SecondsSince(t0);
   return s;
 }

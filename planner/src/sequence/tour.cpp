@@ -10,17 +10,36 @@ namespace stitchsim::planner::detail {
 Tour::Tour(const SequenceProblem& p, std::vector<Visit> order) : p_(p), t_(std::move(order)) {
   pos_.assign(static_cast<std::size_t>(p.courses), -1);
   const int m = 2 * p.courses;
+  stride_ = static_cast<std::size_t>(m);
   for (int u = 0; u < m; ++u) {
     from_start_.push_back(FromStart(p, NodeVisit(u)));
     to_finish_.push_back(ToFinish(p, NodeVisit(u)));
   }
-  if (p.courses <= kTableCourses) {
-    table_.resize(static_cast<std::size_t>(m) * static_cast<std::size_t>(m));
+  if (p.table) {
+    tab_ = p.table->move.data();
+  } else if (p.courses <= kTableCourses) {
+    table_.resize(stride_ * stride_);
     for (int a = 0; a < m; ++a) {
-      for (int b = 0; b < m; ++b) table_[a * m + b] = Edge(p, NodeVisit(a), NodeVisit(b));
+      for (int b = 0; b < m; ++b) table_[a * stride_ + b] = Edge(p, NodeVisit(a), NodeVisit(b));
+    }
+    tab_ = table_.data();
+  }
+  // Blocks: the positions of each group, in the order the tour lays the groups.
+  const int n = Size();
+  block_lo_.assign(static_cast<std::size_t>(n), 0);
+  block_hi_.assign(static_cast<std::size_t>(n), n - 1);
+  if (!p.group.empty()) {
+    for (int x = 0; x < n;) {
+      int y = x;
+      while (y + 1 < n && p.group[t_[y + 1].course] == p.group[t_[x].course]) ++y;
+      for (int z = x; z <= y; ++z) {
+        block_lo_[z] = x;
+        block_hi_[z] = y;
+      }
+      x = y + 1;
     }
   }
-  Refresh();
+  Refresh(0);
   cost_ = PathCost(p_, t_);
 }
 
@@ -32,44 +51,59 @@ double Tour::Link(int x, int y) const {
   return In(x, t_[y]);
 }
 
-double Tour::ReverseDelta(int i, int k) const {
-  const double after = In(i - 1, Flip(t_[k])) + Out(Flip(t_[i]), k + 1) + (rev_[k] - rev_[i]);
-  const double before = In(i - 1, t_[i]) + Out(t_[k], k + 1) + (fwd_[k] - fwd_[i]);
+double Tour::Inside(int i, int k, Stretch how) const {
+  switch (how) {
+    case Stretch::kKeep:
+      return fwd_[k] - fwd_[i];
+    case Stretch::kReverse:
+      return bwd_[k] - bwd_[i];
+    case Stretch::kFlip:
+      return rev_[k] - rev_[i];
+  }
+  return 0.0;
+}
+
+double Tour::ReverseDelta(int i, int k, Stretch how) const {
+  const double after =
+      In(i - 1, FirstOf(i, k, how)) + Out(LastOf(i, k, how), k + 1) + Inside(i, k, how);
+  const double before = In(i - 1, t_[i]) + Out(t_[k], k + 1) + Inside(i, k, Stretch::kKeep);
   return after - before;
 }
 
-double Tour::ChainDelta(int i, int k, int g, bool flip) const {
-  const Visit first = flip ? Flip(t_[k]) : t_[i];
-  const Visit last = flip ? Flip(t_[i]) : t_[k];
+double Tour::ChainDelta(int i, int k, int g, Stretch how) const {
   const double removal = Link(i - 1, k + 1) - In(i - 1, t_[i]) - Out(t_[k], k + 1);
-  const double insertion = In(g, first) + Out(last, g + 1) - Link(g, g + 1);
-  const double inside = flip ? (rev_[k] - rev_[i]) - (fwd_[k] - fwd_[i]) : 0.0;
-  return removal + insertion + inside;
+  const double insertion =
+      In(g, FirstOf(i, k, how)) + Out(LastOf(i, k, how), g + 1) - Link(g, g + 1);
+  return removal + insertion + Inside(i, k, how) - Inside(i, k, Stretch::kKeep);
 }
 
 void Tour::Apply(const TourMove& m) {
   if (m.kind == TourMove::Kind::kNone) return;
   const auto begin = t_.begin();
+  int from = m.i;
   if (m.kind == TourMove::Kind::kReverse) {
     std::reverse(begin + m.i, begin + m.k + 1);
-    for (int x = m.i; x <= m.k; ++x) t_[x] = Flip(t_[x]);
+    if (m.how == Stretch::kFlip) {
+      for (int x = m.i; x <= m.k; ++x) t_[x] = Flip(t_[x]);
+    }
   } else {
     scratch_.assign(begin + m.i, begin + m.k + 1);
-    if (m.flip) {
-      std::reverse(scratch_.begin(), scratch_.end());
+    if (m.how != Stretch::kKeep) std::reverse(scratch_.begin(), scratch_.end());
+    if (m.how == Stretch::kFlip) {
       for (Visit& v : scratch_) v = Flip(v);
     }
     const int len = m.k - m.i + 1;
     if (m.g < m.i) {  // shift g+1..i-1 right by len
       std::move_backward(begin + m.g + 1, begin + m.i, begin + m.k + 1);
       std::copy(scratch_.begin(), scratch_.end(), begin + m.g + 1);
+      from = m.g + 1;
     } else {  // shift k+1..g left by len
       std::move(begin + m.k + 1, begin + m.g + 1, begin + m.i);
       std::copy(scratch_.begin(), scratch_.end(), begin + m.g + 1 - len);
     }
   }
   cost_ += m.delta;
-  Refresh();
+  Refresh(std::max(0, from));
 }
 
 double Tour::BestDirections(std::vector<Visit>& out) const {
@@ -102,17 +136,22 @@ double Tour::BestDirections(std::vector<Visit>& out) const {
 void Tour::Restore(const std::vector<Visit>& order, double cost) {
   t_ = order;
   cost_ = cost;
-  Refresh();
+  Refresh(0);
 }
 
-void Tour::Refresh() {
+void Tour::Refresh(int from) {
   const int n = Size();
-  fwd_.assign(static_cast<std::size_t>(n), 0.0);
-  rev_.assign(static_cast<std::size_t>(n), 0.0);
-  for (int x = 0; x < n; ++x) {
+  fwd_.resize(static_cast<std::size_t>(n));
+  bwd_.resize(static_cast<std::size_t>(n));
+  rev_.resize(static_cast<std::size_t>(n));
+  for (int x = from; x < n; ++x) {
     pos_[t_[x].course] = x;
-    if (x == 0) continue;
+    if (x == 0) {
+      fwd_[0] = bwd_[0] = rev_[0] = 0.0;
+      continue;
+    }
     fwd_[x] = fwd_[x - 1] + E(t_[x - 1], t_[x]);
+    bwd_[x] = bwd_[x - 1] + E(t_[x], t_[x - 1]);
     if (p_.bidirectional) rev_[x] = rev_[x - 1] + E(Flip(t_[x]), Flip(t_[x - 1]));
   }
 }

@@ -1,8 +1,11 @@
 #pragma once
-// The working tour of the local search (local.cpp): an array of visits with
-// prefix sums of its forward cost and of the cost of traversing it backwards (every course
-// flipped), so that moving or reversing any stretch is priced exactly in O(1) even though
-// move costs are not symmetric.
+// The working tour of the local search (local.cpp): an array of visits with prefix sums of
+// its forward cost, of the cost of traversing it backwards with every course kept as it is,
+// and (bidirectional) with every course flipped, so that moving or reversing any stretch is
+// priced exactly in O(1) even though move costs are not symmetric. With precedence groups
+// (SequenceProblem::group) every group keeps its block of positions; a move that would take
+// a course out of its block is not allowed.
+#include <cstdint>
 #include <vector>
 
 #include "detail.h"
@@ -10,18 +13,23 @@
 
 namespace stitchsim::planner::detail {
 
+/// How a stretch is laid after a move: as it was; in reverse order with every course laid in
+/// its own direction still (legal with forward-only lay-up); in reverse order with every
+/// course flipped (bidirectional only: the stretch driven backwards).
+enum class Stretch : std::uint8_t { kKeep, kReverse, kFlip };
+
 /// A candidate change of the tour and its exact cost change.
 struct TourMove {
   enum class Kind { kNone, kReverse, kChain } kind = Kind::kNone;
-  int i = 0;          ///< first position of the stretch
-  int k = 0;          ///< last position of the stretch
-  int g = 0;          ///< kChain: the stretch goes after position g (-1: first)
-  bool flip = false;  ///< kChain: the stretch is laid backwards, each course flipped
+  int i = 0;                     ///< first position of the stretch
+  int k = 0;                     ///< last position of the stretch
+  int g = 0;                     ///< kChain: the stretch goes after position g (-1: first)
+  Stretch how = Stretch::kKeep;  ///< kReverse: kReverse or kFlip; kChain: any
   double delta = 0.0;
 };
 
 /// Up to this many courses the tour keeps every move cost in a table: (2n)^2 doubles, at most
-/// 32 MiB; above, costs are computed when needed.
+/// 32 MiB; above, costs are computed when needed (a MoveTable problem always has its table).
 inline constexpr int kTableCourses = 1024;
 
 class Tour {
@@ -35,12 +43,26 @@ class Tour {
   double Cost() const { return cost_; }
   /// The move from the end of a to the start of b (from the table when there is one).
   double Move(Visit a, Visit b) const { return E(a, b); }
+  /// The tour's current move into position x (from the start) and out of it (to the finish).
+  double CostInto(int x) const { return In(x - 1, t_[x]); }
+  double CostOutOf(int x) const { return Out(t_[x], x + 1); }
+  /// First and last position of the block that position x belongs to (the whole tour
+  /// without groups).
+  int BlockBegin(int x) const { return block_lo_[x]; }
+  int BlockEnd(int x) const { return block_hi_[x]; }
 
-  /// Cost change of reversing positions i..k (bidirectional only; i == k flips one course).
-  double ReverseDelta(int i, int k) const;
-  /// Cost change of moving stretch i..k to after position g (g outside i-1..k), as it is or
-  /// flipped (bidirectional only).
-  double ChainDelta(int i, int k, int g, bool flip) const;
+  /// Whether stretch i..k may be turned (one block), and moved to after g (inside its block).
+  bool CanTurn(int i, int k) const {
+    return i >= 0 && k < Size() && i <= k && block_lo_[i] == block_lo_[k];
+  }
+  bool CanMove(int i, int k, int g) const {
+    return CanTurn(i, k) && (g < i - 1 || g > k) && g >= block_lo_[i] - 1 && g <= block_hi_[i];
+  }
+  /// Cost change of turning positions i..k round in place (how: kReverse or kFlip; i == k
+  /// with kFlip flips one course).
+  double ReverseDelta(int i, int k, Stretch how) const;
+  /// Cost change of moving stretch i..k to after position g, laid `how`.
+  double ChainDelta(int i, int k, int g, Stretch how) const;
   /// Applies a move priced by the functions above (O(n)).
   void Apply(const TourMove& m);
   /// Bidirectional: the best direction of every course for the current order (a shortest
@@ -52,7 +74,9 @@ class Tour {
  private:
   /// Move costs, from the table when there is one.
   double E(Visit a, Visit b) const {
-    return table_.empty() ? Edge(p_, a, b) : table_[VisitNode(a) * 2 * t_.size() + VisitNode(b)];
+    return tab_ == nullptr ? Edge(p_, a, b)
+                           : tab_[static_cast<std::size_t>(VisitNode(a)) * stride_ +
+                                  static_cast<std::size_t>(VisitNode(b))];
   }
   double S(Visit v) const { return from_start_[VisitNode(v)]; }
   double F(Visit v) const { return to_finish_[VisitNode(v)]; }
@@ -62,15 +86,28 @@ class Tour {
   double Out(Visit v, int y) const { return y >= Size() ? F(v) : E(v, t_[y]); }
   /// The current link between positions x and y = x + 1 (or a stretch's ends after removal).
   double Link(int x, int y) const;
-  void Refresh();
+  /// The moves inside positions i..k when laid `how`.
+  double Inside(int i, int k, Stretch how) const;
+  Visit FirstOf(int i, int k, Stretch how) const {
+    return how == Stretch::kKeep ? t_[i] : how == Stretch::kReverse ? t_[k] : Flip(t_[k]);
+  }
+  Visit LastOf(int i, int k, Stretch how) const {
+    return how == Stretch::kKeep ? t_[k] : how == Stretch::kReverse ? t_[i] : Flip(t_[i]);
+  }
+  /// Recomputes positions and prefix sums from position `from` on.
+  void Refresh(int from);
 
   const SequenceProblem& p_;
   std::vector<Visit> t_;
   std::vector<int> pos_;
-  std::vector<double> fwd_;  ///< fwd_[i]: moves t0 -> t1 -> ... -> ti
-  std::vector<double> rev_;  ///< rev_[i]: moves flip(ti) -> ... -> flip(t0)
+  std::vector<int> block_lo_, block_hi_;  ///< per position: its group's block
+  std::vector<double> fwd_;               ///< fwd_[i]: moves t0 -> t1 -> ... -> ti
+  std::vector<double> bwd_;               ///< bwd_[i]: moves ti -> ... -> t0, each course as laid
+  std::vector<double> rev_;  ///< rev_[i]: moves flip(ti) -> ... -> flip(t0) (bidirectional)
   std::vector<Visit> scratch_;
-  std::vector<double> table_;  ///< (2n)^2 move costs between nodes, if n <= kTableCourses
+  std::vector<double> table_;    ///< (2n)^2 move costs between nodes, if n <= kTableCourses
+  const double* tab_ = nullptr;  ///< table_, or the problem's MoveTable; null: computed
+  std::size_t stride_ = 0;       ///< 2n
   std::vector<double> from_start_, to_finish_;  ///< per node
   double cost_ = 0.0;
 };

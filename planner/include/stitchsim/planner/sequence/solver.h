@@ -109,13 +109,13 @@ SequenceSolution SolveSeedMethod(const SequenceProblem& p, const SeedMethodOptio
 /// `max_rounds`; only `time_limit_s` (0: none) reads the clock, and the answer says which
 /// stop it hit. `jobs` threads run the starts; the answer does not depend on it.
 struct LocalSearchOptions {
-  double time_limit_s = 0.0;    ///< wall-clock stop for the whole call, s (0: none)
-  int neighbours = 10;          ///< candidate list length per visit
-  std::int64_t max_rounds = 0;  ///< kick rounds per start at most (0: automatic, from n)
-  std::int64_t stagnation = 0;  ///< rounds without improvement that end a start (0: automatic)
-  int starts = 0;               ///< independent starts (0: automatic, from n)
-  int jobs = 1;                 ///< threads running the starts (>= 1)
-  std::vector<Visit> initial;   ///< every start begins from this order when given (dominance)
+  double time_limit_s = 0.0;     ///< wall-clock stop for the whole call, s (0: none)
+  int neighbours = 10;           ///< candidate list length per visit
+  std::int64_t max_rounds = -1;  ///< kick rounds per start at most (-1: automatic; 0: none)
+  std::int64_t stagnation = 0;   ///< rounds without improvement that end a start (0: automatic)
+  int starts = 0;                ///< independent starts (0: automatic, from n)
+  int jobs = 1;                  ///< threads running the starts (>= 1)
+  std::vector<Visit> initial;    ///< every start begins from this order when given (dominance)
 };
 SequenceSolution SolveLocalSearch(const SequenceProblem& p, const LocalSearchOptions& o = {});
 
