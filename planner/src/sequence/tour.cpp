@@ -39,7 +39,7 @@ Tour::Tour(const SequenceProblem& p, std::vector<Visit> order) : p_(p), t_(std::
       x = y + 1;
     }
   }
-  Refresh(0);
+  Refresh(0, Size() - 1);
   cost_ = PathCost(p_, t_);
 }
 
@@ -80,7 +80,7 @@ double Tour::ChainDelta(int i, int k, int g, Stretch how) const {
 void Tour::Apply(const TourMove& m) {
   if (m.kind == TourMove::Kind::kNone) return;
   const auto begin = t_.begin();
-  int from = m.i;
+  int from = m.i, to = m.k;
   if (m.kind == TourMove::Kind::kReverse) {
     std::reverse(begin + m.i, begin + m.k + 1);
     if (m.how == Stretch::kFlip) {
@@ -100,10 +100,16 @@ void Tour::Apply(const TourMove& m) {
     } else {  // shift k+1..g left by len
       std::move(begin + m.k + 1, begin + m.g + 1, begin + m.i);
       std::copy(scratch_.begin(), scratch_.end(), begin + m.g + 1 - len);
+      to = m.g;
     }
   }
   cost_ += m.delta;
-  Refresh(std::max(0, from));
+  // Now and then the whole tour afresh, so the constant shifts below never drift.
+  if (++applied_ % kFullRefresh == 0) {
+    Refresh(0, Size() - 1);
+  } else {
+    Refresh(std::max(0, from), to);
+  }
 }
 
 double Tour::BestDirections(std::vector<Visit>& out) const {
@@ -136,15 +142,21 @@ double Tour::BestDirections(std::vector<Visit>& out) const {
 void Tour::Restore(const std::vector<Visit>& order, double cost) {
   t_ = order;
   cost_ = cost;
-  Refresh(0);
+  Refresh(0, Size() - 1);
 }
 
-void Tour::Refresh(int from) {
+void Tour::Refresh(int from, int to) {
   const int n = Size();
   fwd_.resize(static_cast<std::size_t>(n));
   bwd_.resize(static_cast<std::size_t>(n));
   rev_.resize(static_cast<std::size_t>(n));
-  for (int x = from; x < n; ++x) {
+  // Positions from..to changed; the prefix sums change there and at to + 1 (its link in),
+  // and beyond by a constant each: the sums of the links from to + 1 on are as they were.
+  const int last = std::min(n - 1, to + 1);
+  const std::array<double, 3> old = last >= 0 && last < n && to + 1 < n
+                                        ? std::array<double, 3>{fwd_[last], bwd_[last], rev_[last]}
+                                        : std::array<double, 3>{0.0, 0.0, 0.0};
+  for (int x = from; x <= last; ++x) {
     pos_[t_[x].course] = x;
     if (x == 0) {
       fwd_[0] = bwd_[0] = rev_[0] = 0.0;
@@ -153,6 +165,13 @@ void Tour::Refresh(int from) {
     fwd_[x] = fwd_[x - 1] + E(t_[x - 1], t_[x]);
     bwd_[x] = bwd_[x - 1] + E(t_[x], t_[x - 1]);
     if (p_.bidirectional) rev_[x] = rev_[x - 1] + E(Flip(t_[x]), Flip(t_[x - 1]));
+  }
+  if (last + 1 >= n || to + 1 >= n) return;
+  const double df = fwd_[last] - old[0], db = bwd_[last] - old[1], dr = rev_[last] - old[2];
+  for (int x = last + 1; x < n; ++x) {
+    fwd_[x] += df;
+    bwd_[x] += db;
+    rev_[x] += dr;
   }
 }
 

@@ -94,8 +94,9 @@ class Tour {
   Visit LastOf(int i, int k, Stretch how) const {
     return how == Stretch::kKeep ? t_[k] : how == Stretch::kReverse ? t_[i] : Flip(t_[i]);
   }
-  /// Recomputes positions and prefix sums from position `from` on.
-  void Refresh(int from);
+  /// Recomputes positions and prefix sums after positions from..to changed (O(to - from)
+  /// table look-ups, then one add per later position).
+  void Refresh(int from, int to);
 
   const SequenceProblem& p_;
   std::vector<Visit> t_;
@@ -110,6 +111,8 @@ class Tour {
   std::size_t stride_ = 0;       ///< 2n
   std::vector<double> from_start_, to_finish_;  ///< per node
   double cost_ = 0.0;
+  std::int64_t applied_ = 0;  ///< moves applied (every kFullRefresh-th recomputes all)
+  static constexpr std::int64_t kFullRefresh = 1024;
 };
 
 }  // namespace stitchsim::planner::detail
