@@ -129,6 +129,10 @@ void AddSequenceCommand(CLI::App& app, int& exit_code) {
                 "Return to the home pose after the last course");
   cmd->add_option("--time-limit", a->run.time_limit_s, "Seconds the local search may take per set")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--jobs,-j", a->run.jobs,
+                  "Threads for the local search's starts (default: the number of cores); the "
+                  "order is the same for any number")
+      ->check(CLI::Range(0, 256));
   cmd->add_flag("--measure-gap", a->run.measure_gap,
                 "Also solve every set of up to 16 courses exactly and report the optimum");
   cmd->add_flag("--course-level", a->run.course_level,

@@ -1,8 +1,11 @@
 // A sequence run: precedence sets ordered, costs, off-part moves (sequence_run.h).
 #include "stitchsim/run/sequence_run.h"
 
+#include <algorithm>
 #include <chrono>
+#include <numeric>
 #include <ostream>
+#include <thread>
 
 #include "stitchsim/planner/sequence/offpart.h"
 #include "stitchsim/planner/sequence/solver.h"
@@ -20,16 +23,23 @@ struct SequenceAnalysis {
   CourseEnds ends;
 };
 
+planner::PrecedenceNetwork PrecedenceOf(const SequenceInputs& in,
+                                        const std::vector<planner::CourseFootprint>& footprints,
+                                        bool course_level) {
+  const scene::Scene& scene = *in.loaded.scene;
+  planner::PrecedenceOptions po;
+  po.min_overlap_mm2 = scene.head.sequence.min_overlap_mm2;
+  po.course_level = course_level;
+  return planner::BuildPrecedence(*scene.surface, in.program, footprints, po);
+}
+
 SequenceAnalysis AnalyseForSequence(const SequenceInputs& in, const SequenceOptions& options,
                                     const sim::CellSetup& cell) {
   const scene::Scene& scene = *in.loaded.scene;
   SequenceAnalysis a;
   const process::TowLayout layout = process::TowLayoutOf(scene.head);
   a.footprints = planner::CourseFootprints(*scene.surface, layout, in.program);
-  planner::PrecedenceOptions po;
-  po.min_overlap_mm2 = scene.head.sequence.min_overlap_mm2;
-  po.course_level = options.course_level;
-  a.network = planner::BuildPrecedence(*scene.surface, in.program, a.footprints, po);
+  a.network = PrecedenceOf(in, a.footprints, options.course_level);
   a.ends = SolveCourseEnds(cell, in.program, in.home);
   return a;
 }
@@ -45,6 +55,30 @@ std::vector<UnreachableEnd> UnreachableEnds(const CourseEnds& ends, std::size_t 
     }
   }
   return out;
+}
+
+// The cost of laying `visits` from home (and back, with `finish`) in the measure of `spec`.
+double TotalCost(const CourseEnds& ends, const std::vector<CourseVisit>& visits,
+                 const MeasureSpec& spec, Measure m, bool finish) {
+  const std::vector<double> moves = MoveCosts(ends, visits, spec, m, finish);
+  return std::accumulate(moves.begin(), moves.end(), 0.0);
+}
+
+// The local search's options of a run: its time limit and threads.
+planner::LocalSearchOptions LocalOptionsOf(const SequenceOptions& options) {
+  planner::LocalSearchOptions lo;
+  lo.time_limit_s = options.time_limit_s;
+  lo.jobs = options.jobs > 0 ? options.jobs
+                             : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return lo;
+}
+
+// Where visit i of `order` starts and ends (its lay-up's first and last pose).
+const EndPoint& StartOfVisit(const CourseEnds& ends, const CourseVisit& v) {
+  return ends.ends[4 * static_cast<std::size_t>(v.course) + (v.reversed ? 2 : 0)];
+}
+const EndPoint& EndOfVisit(const CourseEnds& ends, const CourseVisit& v) {
+  return ends.ends[4 * static_cast<std::size_t>(v.course) + (v.reversed ? 3 : 1)];
 }
 
 // Orders every set in turn, each from where the previous one ended; a set whose solved order
@@ -71,9 +105,7 @@ void SolveSequenceSets(const SequenceOptions& options, const SequenceAnalysis& a
     } else if (options.solver == SequenceSolver::kSeed) {
       sol = planner::SolveSeedMethod(p);
     } else {
-      planner::LocalSearchOptions lo;
-      lo.time_limit_s = options.time_limit_s;
-      sol = planner::SolveLocalSearch(p, lo);
+      sol = planner::SolveLocalSearch(p, LocalOptionsOf(options));
     }
     SetOutcome& set = o.sets[k];
     set.solver = sol.solver;
@@ -85,17 +117,96 @@ void SolveSequenceSets(const SequenceOptions& options, const SequenceAnalysis& a
       sol.cost = original_cost;
       set.kept_original = true;
     }
-    set.original_cost = original_cost;
-    set.cost = sol.cost;
-    if (options.measure_gap) {
-      if (exact || (exact = planner::SolveExact(p))) set.optimum = exact->cost;
-    }
     for (const auto& v : sol.order)
       o.after.push_back({courses[static_cast<std::size_t>(v.course)], v.reversed});
-    const auto& lastv = o.after.back();
-    start = &an.ends.ends[4 * static_cast<std::size_t>(lastv.course) + (lastv.reversed ? 3 : 1)];
+    start = &EndOfVisit(an.ends, o.after.back());
     if (progress) progress(static_cast<double>(o.after.size()), total_courses);
   }
+}
+
+// The first position of every set in o.after (and the end, o.after.size()).
+std::vector<std::size_t> SetOffsets(const SequenceOutcome& o) {
+  std::vector<std::size_t> at{0};
+  for (const auto& set : o.sets) at.push_back(at.back() + set.courses.size());
+  return at;
+}
+
+// The moves between sets optimised with the sets' own (seed 004's further work): every two
+// neighbouring sets solved again as one problem, the first's courses before the second's
+// (planner groups), from where the set before them ends to where the set after them begins,
+// starting from the orders found, so a join is never dearer. Returns the cost saved.
+double JoinSets(const SequenceOptions& options, const CourseEnds& ends, const MeasureSpec& spec,
+                SequenceOutcome& o) {
+  const std::vector<std::size_t> at = SetOffsets(o);
+  double saved = 0.0;
+  for (std::size_t k = 0; k + 1 < o.sets.size(); ++k) {
+    const std::size_t from = at[k], to = at[k + 2];
+    std::vector<int> courses;
+    for (std::size_t i = from; i < to; ++i) courses.push_back(o.after[i].course);
+    const EndPoint& start = from == 0 ? ends.home : EndOfVisit(ends, o.after[from - 1]);
+    const EndPoint* finish = to < o.after.size() ? &StartOfVisit(ends, o.after[to])
+                             : o.return_home     ? &ends.home
+                                                 : nullptr;
+    auto p = SetProblem(ends, courses, spec, o.measure, o.bidirectional, start, finish);
+    planner::LocalSearchOptions lo = LocalOptionsOf(options);
+    for (std::size_t i = from; i < to; ++i) {
+      p.group.push_back(i < at[k + 1] ? 0 : 1);
+      lo.initial.push_back({static_cast<int>(i - from), o.after[i].reversed});
+    }
+    const double before = planner::PathCost(p, lo.initial);
+    const planner::SequenceSolution sol = planner::SolveLocalSearch(p, lo);
+    if (!(sol.cost < before)) continue;
+    saved += before - sol.cost;
+    for (std::size_t i = 0; i < sol.order.size(); ++i) {
+      const auto& v = sol.order[i];
+      o.after[from + i] = {courses[static_cast<std::size_t>(v.course)], v.reversed};
+    }
+  }
+  return saved;
+}
+
+// Each set's problem from where the set before it ends in the final order (home first; the
+// last one back home with --return-home): its programme order's cost, its final order's
+// and, with --measure-gap where the exact solver runs, the optimum.
+void PriceSets(const SequenceOptions& options, const CourseEnds& ends, const MeasureSpec& spec,
+               SequenceOutcome& o) {
+  const std::vector<std::size_t> at = SetOffsets(o);
+  for (std::size_t k = 0; k < o.sets.size(); ++k) {
+    SetOutcome& set = o.sets[k];
+    const EndPoint& start = at[k] == 0 ? ends.home : EndOfVisit(ends, o.after[at[k] - 1]);
+    const bool last = k + 1 == o.sets.size();
+    const auto p = SetProblem(ends, set.courses, spec, o.measure, o.bidirectional, start,
+                              last && o.return_home ? &ends.home : nullptr);
+    std::vector<planner::Visit> original, chosen;
+    for (int i = 0; i < p.courses; ++i) original.push_back({i, false});
+    for (std::size_t i = at[k]; i < at[k + 1]; ++i) {
+      const auto pos = std::find(set.courses.begin(), set.courses.end(), o.after[i].course);
+      chosen.push_back({static_cast<int>(pos - set.courses.begin()), o.after[i].reversed});
+    }
+    set.original_cost = planner::PathCost(p, original);
+    set.cost = planner::PathCost(p, chosen);
+    if (options.measure_gap) {
+      if (const auto exact = planner::SolveExact(p)) set.optimum = exact->cost;
+    }
+  }
+}
+
+// Solves every set, joins them, prices them; with the safeguard on the whole: an order dearer
+// than the programme's (in the chosen measure) is not taken.
+void SolveAndJoin(const SequenceOptions& options, const SequenceAnalysis& an,
+                  const MeasureSpec& spec, SequenceOutcome& o,
+                  const planner::PlanProgress& progress) {
+  SolveSequenceSets(options, an, spec, o, progress);
+  if (options.solver == SequenceSolver::kLocal)
+    o.joined_saving = JoinSets(options, an.ends, spec, o);
+  const double before = TotalCost(an.ends, o.before, spec, o.measure, o.return_home);
+  const double after = TotalCost(an.ends, o.after, spec, o.measure, o.return_home);
+  if (after > before) {
+    o.after = o.before;
+    o.kept_programme = true;
+    for (auto& set : o.sets) set.kept_original = true;
+  }
+  PriceSets(options, an.ends, spec, o);
 }
 
 // Off-part costs before and after, per set and overall, in every measure.
@@ -181,6 +292,7 @@ SequenceOutcome SequenceOutcomeOf(const SequenceInputs& in, const SequenceOption
   o.bidirectional = options.bidirectional;
   o.return_home = options.return_home;
   o.course_level = options.course_level;
+  o.precedence = options.course_level ? "course" : "ply";
   o.solver = !options.order_file.empty()                ? "given"
              : options.solver == SequenceSolver::kExact ? "exact"
              : options.solver == SequenceSolver::kSeed  ? "seed"
@@ -216,8 +328,20 @@ SequenceRun RunSequence(const SequenceInputs& in, const SequenceOptions& options
   MeasureSpec specs[3];
   for (std::size_t mi = 0; mi < 3; ++mi)
     specs[mi] = SpecOf(kMeasures[mi], *in.loaded.robot, in.axis_weights);
+  const MeasureSpec& spec = specs[static_cast<std::size_t>(o.measure)];
   if (options.order_file.empty()) {
-    SolveSequenceSets(options, an, specs[static_cast<std::size_t>(o.measure)], o, progress);
+    SolveAndJoin(options, an, spec, o, progress);
+    if (options.course_level) {
+      // Dominance: every ply-level order is a course-level one; the cheaper answer is taken.
+      SequenceAnalysis ply{an.footprints, PrecedenceOf(in, an.footprints, false), an.ends};
+      SequenceOutcome alt = SequenceOutcomeOf(in, options, ply.network);
+      SolveAndJoin(options, ply, spec, alt, nullptr);
+      const double mine = TotalCost(an.ends, o.after, spec, o.measure, o.return_home);
+      if (TotalCost(an.ends, alt.after, spec, o.measure, o.return_home) < mine) {
+        o = std::move(alt);
+        o.precedence = "ply";
+      }
+    }
   } else {
     o.after = in.given_order;
     for (auto& set : o.sets) set.solver = "given";

@@ -135,7 +135,7 @@ TEST_F(SequenceRunTest, PrecedenceSetsAndAnOrderBreakingThem) {
   ASSERT_EQ(r.outcome.sets.size(), 2u);
   EXPECT_EQ(r.outcome.sets[0].plies, std::vector<int>{1});
   EXPECT_EQ(r.outcome.sets[1].plies, std::vector<int>{4});
-  EXPECT_EQ(r.outcome.sets[0].status, planner::SolveStatus::kRoundCap);
+  EXPECT_EQ(r.outcome.sets[0].status, planner::SolveStatus::kStagnation);
   // The pad's first course laid first: under the base, refused as the given order's fault.
   const auto& courses = in.program.courses;
   json order = json::array();
@@ -152,7 +152,8 @@ TEST_F(SequenceRunTest, PrecedenceSetsAndAnOrderBreakingThem) {
   EXPECT_NE(bad.error.message.find("of ply 1"), std::string::npos) << bad.error.message;
 }
 
-// The local search cut by a tiny time limit says so per set; without a limit it ran its rounds.
+// The local search cut by a tiny time limit says so per set; without a limit it stopped when
+// its rounds stopped finding anything cheaper.
 TEST_F(SequenceRunTest, EachSetSaysHowItsSolverStopped) {
   SequenceOptions o = test::SeqPlateOptions(dir_path() / "pads.nc");
   o.time_limit_s = 1e-9;
@@ -162,7 +163,8 @@ TEST_F(SequenceRunTest, EachSetSaysHowItsSolverStopped) {
   ASSERT_GE(cut.outcome.sets[0].courses.size(), 3u);  // fewer: no rounds to cut
   EXPECT_EQ(cut.outcome.sets[0].status, planner::SolveStatus::kTimeLimit);
   o.time_limit_s = 0;
-  EXPECT_EQ(RunSequence(in, o, nullptr).outcome.sets[0].status, planner::SolveStatus::kRoundCap);
+  EXPECT_EQ(RunSequence(in, o, nullptr).outcome.sets[0].status,
+            planner::SolveStatus::kStagnation);
 }
 
 TEST_F(SequenceRunTest, BadInputsAreDiagnosticsOrErrors) {

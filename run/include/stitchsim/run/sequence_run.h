@@ -34,6 +34,7 @@ struct SequenceOptions {
   bool course_level = false;   ///< course-level precedence (a course may move to an earlier set)
   bool measure_gap = false;    ///< also solve sets of up to 16 courses exactly (the optimum)
   double time_limit_s = 10.0;  ///< the local search's limit per set, s (0: none)
+  int jobs = 0;      ///< threads for the local search's starts (0: the cores; same answer on any)
   std::string home;  ///< "X,Y,Z,A,B,C", part frame (mm, deg); empty: the programme's first pose
   std::string order_file;  ///< a report's "order" to lay instead of solving; empty: solve
 };
@@ -71,9 +72,9 @@ struct SetOutcome {
   std::int64_t iterations = 0;                                 ///< the solver's work count
   bool kept_original = false;               ///< the solver's order cost more than the programme's
   Costs offpart_before{}, offpart_after{};  ///< moves into its courses (and home, last set)
-  /// The set's own problem in the chosen measure (from where the previous set ended): the
-  /// programme's order, the order chosen, and (measure_gap, sets the exact solver takes) the
-  /// optimum.
+  /// The set's own problem in the chosen measure (from where the previous set ends in the
+  /// final order; the last set back home with --return-home): the programme's order, the order
+  /// chosen, and (measure_gap, sets the exact solver takes) the optimum.
   double original_cost = 0.0, cost = 0.0;
   std::optional<double> optimum;
 };
@@ -84,7 +85,12 @@ struct SequenceOutcome {
   Measure measure = Measure::kAxes;
   std::string solver;  ///< "local", "seed", "exact" or "given" (--order)
   bool bidirectional = false, return_home = false, course_level = false;
-  std::vector<SetOutcome> sets;                      ///< in laying order
+  /// The precedence whose answer was taken: "course" (--course-level) or "ply"; with
+  /// --course-level both are solved and the cheaper kept (every ply-level order is allowed).
+  std::string precedence = "ply";
+  double joined_saving = 0.0;    ///< chosen measure: saved by solving neighbouring sets jointly
+  bool kept_programme = false;   ///< the whole answer cost more than the programme: not taken
+  std::vector<SetOutcome> sets;  ///< in laying order
   std::vector<program::CourseVisit> before, after;   ///< whole programme: as written, as chosen
   std::vector<int> set_of_course;                    ///< per course (programme order): its set
   Costs offpart_before{}, offpart_after{}, layup{};  ///< whole programme, every measure
