@@ -1,7 +1,9 @@
 // A sequence run: precedence sets ordered, costs, off-part moves (sequence_run.h).
 #include "stitchsim/run/sequence_run.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ostream>
 
 #include "stitchsim/planner/sequence/offpart.h"
@@ -95,6 +97,66 @@ void SolveSequenceSets(const SequenceOptions& options, const SequenceAnalysis& a
     const auto& lastv = o.after.back();
     start = &an.ends.ends[4 * static_cast<std::size_t>(lastv.course) + (lastv.reversed ? 3 : 1)];
     if (progress) progress(static_cast<double>(o.after.size()), total_courses);
+  }
+}
+
+// The gap of `cost` to the best lower bound known (SetOutcome::gap). A relative difference
+// below 1e-9 is rounding (the two costs summed in other orders), reported as 0.
+std::optional<double> GapTo(double cost, double best_lower) {
+  if (best_lower <= 0.0) return cost <= 0.0 ? std::optional<double>(0.0) : std::nullopt;
+  const double gap = (cost - best_lower) / best_lower;
+  return std::abs(gap) < 1e-9 ? 0.0 : gap;
+}
+
+// The order laid of each set (local indices into its courses), from `after`; empty when the
+// order interleaves the sets (a given order may, where their courses do not overlap).
+std::vector<std::vector<planner::Visit>> SetOrders(const SequenceOutcome& o) {
+  std::vector<std::vector<planner::Visit>> orders(o.sets.size());
+  std::size_t set = 0;
+  for (const CourseVisit& v : o.after) {
+    const auto k = static_cast<std::size_t>(o.set_of_course[static_cast<std::size_t>(v.course)]);
+    if (k < set) return {};
+    set = k;
+    const auto& courses = o.sets[k].courses;
+    const auto at = std::find(courses.begin(), courses.end(), v.course) - courses.begin();
+    orders[k].push_back({static_cast<int>(at), v.reversed});
+  }
+  return orders;
+}
+
+// After the order is laid: for every set, in the problem it was laid in (from where the
+// previous set ended), its cost, a lower bound, the optimum where the exact solver is instant
+// (or asked for) and the gap. A given order's sets get their costs here too.
+void BoundSets(const SequenceOptions& options, const CourseEnds& ends, const MeasureSpec& spec,
+               SequenceOutcome& o) {
+  const auto orders = SetOrders(o);
+  if (orders.empty()) return;
+  const EndPoint* start = &ends.home;
+  for (std::size_t k = 0; k < o.sets.size(); ++k) {
+    SetOutcome& set = o.sets[k];
+    const bool last = k + 1 == o.sets.size();
+    const auto p = SetProblem(ends, set.courses, spec, o.measure, o.bidirectional, *start,
+                              last && o.return_home ? &ends.home : nullptr);
+    set.cost = planner::PathCost(p, orders[k]);
+    if (set.status == planner::SolveStatus::kGiven) {
+      std::vector<planner::Visit> programme;
+      for (int i = 0; i < p.courses; ++i) programme.push_back({i, false});
+      set.original_cost = planner::PathCost(p, programme);
+    }
+    const int exact_up_to =
+        options.measure_gap ? planner::kMaxExactCourses : kExactByDefaultCourses;
+    if (!set.optimum && set.status == planner::SolveStatus::kOptimal) set.optimum = set.cost;
+    if (!set.optimum && p.courses <= exact_up_to) set.optimum = planner::SolveExact(p)->cost;
+    const planner::LowerBound b = planner::ComputeLowerBound(p);
+    set.bound = b.value;
+    set.bound_method = b.method;
+    set.bound_seconds = b.seconds;
+    set.gap = GapTo(set.cost, set.optimum ? *set.optimum : b.value);
+    if (!orders[k].empty()) {
+      const planner::Visit& v = orders[k].back();
+      const auto course = static_cast<std::size_t>(set.courses[static_cast<std::size_t>(v.course)]);
+      start = &ends.ends[4 * course + (v.reversed ? 3 : 1)];
+    }
   }
 }
 
@@ -236,6 +298,7 @@ SequenceRun RunSequence(const SequenceInputs& in, const SequenceOptions& options
                      ") before a course it overlaps that the programme lays first"};
     return run;
   }
+  BoundSets(options, an.ends, specs[static_cast<std::size_t>(o.measure)], o);
   SequenceCostsOf(an.ends, specs, o);
   o.layup = LayupCosts(cell, in.program, specs[0]);
   o.flown_offpart_before_mm = in.program.offpart_length_mm;
