@@ -20,12 +20,16 @@
 // two uses, so every order's cycle costs at most the order: a relaxation, still a lower bound.
 // Precedence groups are ignored: the ungrouped problem allows more orders, so its bound holds.
 //
-// The 1-tree: a spanning tree of every node but S that holds the forced {A_i, B_i} edges (Prim
-// adds a node's partner right after the node), plus S's two edges: forced {S, F} and its
-// cheapest other one. Penalties pi make edge costs c + pi_u + pi_v; the tree's cost minus
-// 2 sum(pi) is a lower bound for any pi; the ascent (Held and Karp, with Volgenant and Jonker's
-// step rule as LKH uses it) moves pi along the degree excess. Work is counted in edge
-// evaluations, never in seconds, so the answer does not depend on the machine.
+// The 1-tree (with two special nodes): a spanning tree of the course nodes that holds the
+// forced {A_i, B_i} edges (Prim adds a node's partner right after the node), plus the forced
+// {S, F} and the cheapest other edge of S and of F. Every cycle of the transformation is one:
+// without S and F it is a Hamiltonian path of the course nodes. S and F are kept out of the
+// tree because without a finish every {F, B_i} costs 0: in a plain 1-tree F would take them
+// all (a star of cost 0) and the ascent would need many rounds to undo it. Penalties pi make edge
+// costs c + pi_u + pi_v; the tree's cost minus 2 sum(pi) is a lower bound for any pi; the ascent
+// (Held and Karp, with Volgenant and Jonker's step rule as LKH uses it) moves pi along the degree
+// excess. Work is counted in edge evaluations, never in seconds, so the answer does not depend on
+// the machine.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -134,19 +138,20 @@ class OneTreeSolver {
       ++t.degree[static_cast<std::size_t>(u)];
       ++t.degree[static_cast<std::size_t>(v)];
     };
-    // Dense Prim over every node but S, from F; a course node's partner joins with it. One pass
-    // over the nodes still out both lowers their keys by the pair just joined and finds the
-    // next one to join.
+    // Dense Prim over the course nodes, from course 0's pair; a course node's partner joins
+    // with it. One pass over the nodes still out both lowers their keys by the pair just
+    // joined and finds the next one to join.
     rest_.clear();
-    for (int v = 0; v < nodes - 2; ++v) {
+    for (int v = 2; v < nodes - 2; ++v) {
       key_[static_cast<std::size_t>(v)] = kInf;
       rest_.push_back(v);
     }
-    int u = f, w = f;
-    while (true) {
+    add_edge(0, 1, pi[0] + pi[1]);
+    int u = 0, w = 1;
+    while (!rest_.empty()) {
       const double pu = pi[static_cast<std::size_t>(u)], pw = pi[static_cast<std::size_t>(w)];
       const double* cost_u = g_.CourseRow(u, rest_, scratch_u_);
-      const double* cost_w = w != u ? g_.CourseRow(w, rest_, scratch_w_) : nullptr;
+      const double* cost_w = g_.CourseRow(w, rest_, scratch_w_);
       std::size_t best = 0;
       double best_key = kInf;
       for (std::size_t k = 0; k < rest_.size(); ++k) {
@@ -157,20 +162,17 @@ class OneTreeSolver {
           key = cu;
           parent_[v] = u;
         }
-        if (cost_w != nullptr) {
-          const double cw = cost_w[v] + pw + pi[v];
-          if (cw < key) {
-            key = cw;
-            parent_[v] = w;
-          }
+        const double cw = cost_w[v] + pw + pi[v];
+        if (cw < key) {
+          key = cw;
+          parent_[v] = w;
         }
         if (key < best_key) {  // the first of equal keys: the lowest node
           best_key = key;
           best = k;
         }
       }
-      work += static_cast<std::int64_t>(rest_.size()) * (w != u ? 2 : 1);
-      if (rest_.empty()) break;
+      work += 2 * static_cast<std::int64_t>(rest_.size());
       if (best_key == kInf) return NoFiniteTree(nodes);
       u = rest_[best];
       w = u ^ 1;
@@ -181,20 +183,23 @@ class OneTreeSolver {
           std::remove_if(rest_.begin(), rest_.end(), [&](int v) { return v == u || v == w; }),
           rest_.end());
     }
+    // S and F: the forced edge between them and each one's cheapest edge to a course node.
     add_edge(s, f, pi[static_cast<std::size_t>(s)] + pi[static_cast<std::size_t>(f)]);
-    double cheapest = kInf;
-    int other = -1;
-    for (int v = 0; v < nodes - 2; ++v) {
-      const double c =
-          g_.Cost(s, v) + pi[static_cast<std::size_t>(s)] + pi[static_cast<std::size_t>(v)];
-      if (c < cheapest) {
-        cheapest = c;
-        other = v;
+    for (const int end : {s, f}) {
+      double cheapest = kInf;
+      int other = -1;
+      for (int v = 0; v < nodes - 2; ++v) {
+        const double c =
+            g_.Cost(end, v) + pi[static_cast<std::size_t>(end)] + pi[static_cast<std::size_t>(v)];
+        if (c < cheapest) {
+          cheapest = c;
+          other = v;
+        }
       }
+      work += nodes - 2;
+      if (cheapest == kInf) return NoFiniteTree(nodes);
+      add_edge(end, other, cheapest);
     }
-    work += nodes - 2;
-    if (cheapest == kInf) return NoFiniteTree(nodes);
-    add_edge(s, other, cheapest);
     double pi_sum = 0.0;
     for (const double x : pi) {
       pi_sum += x;
