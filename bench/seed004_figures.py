@@ -133,7 +133,9 @@ def one_case(binary, out, name, scene, plies, style, verify):
             "axes_offpart_pct": reduction(r["totals"]["offpart_before"]["axes"],
                                           r["totals"]["offpart_after"]["axes"]),
             "sets": [{"plies": s["plies"], "courses": s["courses"], "cost": s["cost"],
-                      "optimum": s["optimum"], "gap_pct": s["gap_pct"]} for s in r["sets"]],
+                      "optimum": s["optimum"],
+                      "gap_pct": None if s["optimum"] is None else 100 * s["gap"]}
+                     for s in r["sets"]],
         }
         if verify:
             p, _ = run([binary, "verify", nc, "--scene", scene], check=False)

@@ -4,6 +4,7 @@
 // run::RunSequence; this file parses, prints and picks the exit code.
 #include <cstdio>
 #include <memory>
+#include <string>
 
 #include "cli_common.h"
 #include "commands.h"
@@ -25,6 +26,25 @@ double Change(double before, double after) {
   return before > 0.0 ? -100.0 * (before - after) / before : 0.0;
 }
 
+// A cost for people (6 significant digits).
+std::string Cost6(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+// How close a set's cost is to optimal: "optimal (bound ...)", "within X % of optimal (...)".
+std::string Verdict(const run::SetOutcome& s) {
+  if (!s.bound) return "no bound (the order interleaves the sets)";
+  const std::string bound = "bound " + Cost6(*s.bound) + ", " + s.bound_method;
+  if (!s.gap) return bound;
+  if (s.optimum && *s.gap == 0.0) return "optimal (" + bound + ")";
+  char within[64];
+  std::snprintf(within, sizeof within, "within %.3f %% of optimal (", 100.0 * *s.gap);
+  return within + (s.optimum ? "optimum " + Cost6(*s.optimum) + ", exact; " : std::string()) +
+         bound + ")";
+}
+
 // The text summary on stdout.
 void PrintSequenceSummary(const run::SequenceOutcome& o) {
   using run::MeasureName;
@@ -41,9 +61,9 @@ void PrintSequenceSummary(const run::SequenceOutcome& o) {
                 plies.c_str(), s.courses.size(), MeasureName(o.measure), s.offpart_before[mi],
                 s.offpart_after[mi], Change(s.offpart_before[mi], s.offpart_after[mi]),
                 s.kept_original ? " (programme order kept: the solver found nothing cheaper)" : "");
-    if (s.optimum)
-      std::printf("    set cost %.6g, optimum %.6g (exact): %.3f %% above\n", s.cost, *s.optimum,
-                  *s.optimum > 0.0 ? 100.0 * (s.cost - *s.optimum) / *s.optimum : 0.0);
+    std::printf("    set cost %.6g (programme order %.6g%s), %s stopped: %s; %s\n", s.cost,
+                s.original_cost, s.kept_original ? ", kept" : "", s.solver.c_str(),
+                planner::ToString(s.status), Verdict(s).c_str());
   }
   for (std::size_t m = 0; m < 3; ++m) {
     const run::Measure measure = run::kMeasures[m];
@@ -134,7 +154,8 @@ void AddSequenceCommand(CLI::App& app, int& exit_code) {
                   "order is the same for any number")
       ->check(CLI::Range(0, 256));
   cmd->add_flag("--measure-gap", a->run.measure_gap,
-                "Also solve every set of up to 16 courses exactly and report the optimum");
+                "Also solve sets of 13 to 16 courses exactly for the optimum (sets of up to 12 "
+                "always are)");
   cmd->add_flag("--course-level", a->run.course_level,
                 "Course-level precedence: a course may move into an earlier set");
   cmd->add_option("--order", a->run.order_file,

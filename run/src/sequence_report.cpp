@@ -17,22 +17,26 @@ json SequenceCostsJson(const Costs& c) {
 
 Costs SumOfCosts(const Costs& a, const Costs& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
 
+json OptionalJson(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
+
 json SequenceSetJson(std::size_t k, const SetOutcome& s) {
-  return json{
-      {"set", k + 1},
-      {"plies", s.plies},
-      {"courses", s.courses.size()},
-      {"solver", s.solver},
-      {"seconds", s.seconds},
-      {"iterations", s.iterations},
-      {"kept_original", s.kept_original},
-      {"original_cost", s.original_cost},
-      {"cost", s.cost},
-      {"optimum", s.optimum ? json(*s.optimum) : json(nullptr)},
-      {"gap_pct", s.optimum && *s.optimum > 0.0 ? json(100.0 * (s.cost - *s.optimum) / *s.optimum)
-                                                : json(nullptr)},
-      {"offpart_before", SequenceCostsJson(s.offpart_before)},
-      {"offpart_after", SequenceCostsJson(s.offpart_after)}};
+  return json{{"set", k + 1},
+              {"plies", s.plies},
+              {"courses", s.courses.size()},
+              {"solver", s.solver},
+              {"status", planner::ToString(s.status)},
+              {"seconds", s.seconds},
+              {"iterations", s.iterations},
+              {"kept_original", s.kept_original},
+              {"original_cost", s.original_cost},
+              {"cost", s.cost},
+              {"optimum", OptionalJson(s.optimum)},
+              {"bound", OptionalJson(s.bound)},
+              {"bound_method", s.bound ? json(s.bound_method) : json(nullptr)},
+              {"bound_seconds", s.bound_seconds},
+              {"gap", OptionalJson(s.gap)},
+              {"offpart_before", SequenceCostsJson(s.offpart_before)},
+              {"offpart_after", SequenceCostsJson(s.offpart_after)}};
 }
 
 json SequenceTotalsJson(const SequenceOutcome& o) {
@@ -40,6 +44,16 @@ json SequenceTotalsJson(const SequenceOutcome& o) {
   totals["offpart_before"] = SequenceCostsJson(o.offpart_before);
   totals["offpart_after"] = SequenceCostsJson(o.offpart_after);
   totals["layup"] = SequenceCostsJson(o.layup);
+  // The sets' bounds and costs in the chosen measure, each set from where it began as laid.
+  double bound = 0.0, cost = 0.0;
+  bool bounded = true;
+  for (const SetOutcome& s : o.sets) {
+    bounded = bounded && s.bound.has_value();
+    bound += s.bound.value_or(0.0);
+    cost += s.cost;
+  }
+  totals["bound"] = bounded ? json(bound) : json(nullptr);
+  totals["cost"] = cost;
   totals["total_before"] = SequenceCostsJson(SumOfCosts(o.offpart_before, o.layup));
   totals["total_after"] = SequenceCostsJson(SumOfCosts(o.offpart_after, o.layup));
   totals["flown_tool_mm"] = json{{"offpart_before", o.flown_offpart_before_mm},

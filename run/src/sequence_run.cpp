@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <numeric>
 #include <ostream>
 #include <thread>
@@ -165,33 +166,66 @@ double JoinSets(const SequenceOptions& options, const CourseEnds& ends, const Me
   return saved;
 }
 
-// Each set's problem from where the set before it ends in the final order (home first; the
-// last one back home with --return-home): its programme order's cost, its final order's
-// and, with --measure-gap where the exact solver runs, the optimum.
-void PriceSets(const SequenceOptions& options, const CourseEnds& ends, const MeasureSpec& spec,
+// The gap of `cost` to the best lower bound known (SetOutcome::gap). A relative difference
+// below 1e-9 is rounding (the two costs summed in other orders), reported as 0.
+std::optional<double> GapTo(double cost, double best_lower) {
+  if (best_lower <= 0.0) return cost <= 0.0 ? std::optional<double>(0.0) : std::nullopt;
+  const double gap = (cost - best_lower) / best_lower;
+  return std::abs(gap) < 1e-9 ? 0.0 : gap;
+}
+
+// The order laid of each set (local indices into its courses), from `after`; empty when the
+// order interleaves the sets (a given order may, where their courses do not overlap).
+std::vector<std::vector<planner::Visit>> SetOrders(const SequenceOutcome& o) {
+  std::vector<std::vector<planner::Visit>> orders(o.sets.size());
+  std::size_t set = 0;
+  for (const CourseVisit& v : o.after) {
+    const auto k = static_cast<std::size_t>(o.set_of_course[static_cast<std::size_t>(v.course)]);
+    if (k < set) return {};
+    set = k;
+    const auto& courses = o.sets[k].courses;
+    const auto at = std::find(courses.begin(), courses.end(), v.course) - courses.begin();
+    orders[k].push_back({static_cast<int>(at), v.reversed});
+  }
+  return orders;
+}
+
+// After the order is laid: for every set, in the problem it was laid in (from where the
+// previous set ended), its cost, a lower bound, the optimum where the exact solver is instant
+// (or asked for) and the gap. A given order's sets get their costs here too.
+void BoundSets(const SequenceOptions& options, const CourseEnds& ends, const MeasureSpec& spec,
                SequenceOutcome& o) {
-  const std::vector<std::size_t> at = SetOffsets(o);
+  const auto orders = SetOrders(o);
+  if (orders.empty()) return;
+  const EndPoint* start = &ends.home;
   for (std::size_t k = 0; k < o.sets.size(); ++k) {
     SetOutcome& set = o.sets[k];
-    const EndPoint& start = at[k] == 0 ? ends.home : EndOfVisit(ends, o.after[at[k] - 1]);
     const bool last = k + 1 == o.sets.size();
-    const auto p = SetProblem(ends, set.courses, spec, o.measure, o.bidirectional, start,
+    const auto p = SetProblem(ends, set.courses, spec, o.measure, o.bidirectional, *start,
                               last && o.return_home ? &ends.home : nullptr);
-    std::vector<planner::Visit> original, chosen;
-    for (int i = 0; i < p.courses; ++i) original.push_back({i, false});
-    for (std::size_t i = at[k]; i < at[k + 1]; ++i) {
-      const auto pos = std::find(set.courses.begin(), set.courses.end(), o.after[i].course);
-      chosen.push_back({static_cast<int>(pos - set.courses.begin()), o.after[i].reversed});
-    }
-    set.original_cost = planner::PathCost(p, original);
-    set.cost = planner::PathCost(p, chosen);
-    if (options.measure_gap) {
-      if (const auto exact = planner::SolveExact(p)) set.optimum = exact->cost;
+    set.cost = planner::PathCost(p, orders[k]);
+    // The programme's order of the same set from the same start: the cost at which the
+    // safeguard keeps it (the start is the final order's, so it is priced here).
+    std::vector<planner::Visit> programme;
+    for (int i = 0; i < p.courses; ++i) programme.push_back({i, false});
+    set.original_cost = planner::PathCost(p, programme);
+    const bool exact_asked = options.measure_gap || options.solver == SequenceSolver::kExact;
+    const int exact_up_to = exact_asked ? planner::kMaxExactCourses : kExactByDefaultCourses;
+    if (p.courses <= exact_up_to) set.optimum = planner::SolveExact(p)->cost;
+    const planner::LowerBound b = planner::ComputeLowerBound(p);
+    set.bound = b.value;
+    set.bound_method = b.method;
+    set.bound_seconds = b.seconds;
+    set.gap = GapTo(set.cost, set.optimum ? *set.optimum : b.value);
+    if (!orders[k].empty()) {
+      const planner::Visit& v = orders[k].back();
+      const auto course = static_cast<std::size_t>(set.courses[static_cast<std::size_t>(v.course)]);
+      start = &ends.ends[4 * course + (v.reversed ? 3 : 1)];
     }
   }
 }
 
-// Solves every set, joins them, prices them; with the safeguard on the whole: an order dearer
+// Solves every set and joins them; with the safeguard on the whole: an order dearer
 // than the programme's (in the chosen measure) is not taken.
 void SolveAndJoin(const SequenceOptions& options, const SequenceAnalysis& an,
                   const MeasureSpec& spec, SequenceOutcome& o,
@@ -206,7 +240,6 @@ void SolveAndJoin(const SequenceOptions& options, const SequenceAnalysis& an,
     o.kept_programme = true;
     for (auto& set : o.sets) set.kept_original = true;
   }
-  PriceSets(options, an.ends, spec, o);
 }
 
 // Off-part costs before and after, per set and overall, in every measure.
@@ -360,6 +393,7 @@ SequenceRun RunSequence(const SequenceInputs& in, const SequenceOptions& options
                      ") before a course it overlaps that the programme lays first"};
     return run;
   }
+  BoundSets(options, an.ends, specs[static_cast<std::size_t>(o.measure)], o);
   SequenceCostsOf(an.ends, specs, o);
   o.layup = LayupCosts(cell, in.program, specs[0]);
   o.flown_offpart_before_mm = in.program.offpart_length_mm;

@@ -64,6 +64,21 @@ TEST(Sequence, PanelKeepsEveryLayupAndVerifiesClean) {
   const auto& order = report.at("order");
   ASSERT_EQ(order.size(), after.courses.size());
   EXPECT_EQ(report.at("sets").size(), 2u);  // skin_45 covers skin_0
+  // Issue 28: every set carries its bound, optimum (at most 12 courses: exact by default), gap,
+  // the solver's stop and the safeguard's cost; the text says how close to optimal.
+  double bounds = 0.0;
+  for (const auto& set : report.at("sets")) {
+    for (const char* key : {"bound", "optimum", "gap", "original_cost"})
+      EXPECT_TRUE(set.at(key).is_number()) << key;
+    EXPECT_EQ(set.at("bound_method"), "held-karp");
+    EXPECT_TRUE(set.at("kept_original").is_boolean());
+    EXPECT_TRUE(set.at("status").is_string());
+    EXPECT_LE(set.at("bound").get<double>(), set.at("optimum").get<double>() + 1e-9);
+    bounds += set.at("bound").get<double>();
+  }
+  EXPECT_NEAR(report.at("totals").at("bound").get<double>(), bounds, 1e-9);
+  EXPECT_NE(r.out.find("optimal ("), std::string::npos) << r.out;  // "within X % of optimal ("
+  EXPECT_NE(r.out.find("(programme order "), std::string::npos) << r.out;
   int last_ply = 0, reversed = 0;
   for (std::size_t i = 0; i < after.courses.size(); ++i) {
     const auto& a = after.courses[i];

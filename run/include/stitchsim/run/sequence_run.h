@@ -32,7 +32,7 @@ struct SequenceOptions {
   bool bidirectional = false;                      ///< courses may be laid backwards
   bool return_home = false;                        ///< back to home after the last course
   bool course_level = false;   ///< course-level precedence (a course may move to an earlier set)
-  bool measure_gap = false;    ///< also solve sets of up to 16 courses exactly (the optimum)
+  bool measure_gap = false;    ///< also solve sets of 13 to 16 courses exactly (the optimum)
   double time_limit_s = 10.0;  ///< the local search's limit per set, s (0: none)
   int jobs = 0;      ///< threads for the local search's starts (0: the cores; same answer on any)
   std::string home;  ///< "X,Y,Z,A,B,C", part frame (mm, deg); empty: the programme's first pose
@@ -72,12 +72,28 @@ struct SetOutcome {
   std::int64_t iterations = 0;                                 ///< the solver's work count
   bool kept_original = false;               ///< the solver's order cost more than the programme's
   Costs offpart_before{}, offpart_after{};  ///< moves into its courses (and home, last set)
-  /// The set's own problem in the chosen measure (from where the previous set ends in the
-  /// final order; the last set back home with --return-home): the programme's order, the order
-  /// chosen, and (measure_gap, sets the exact solver takes) the optimum.
+  /// The set's own problem in the chosen measure (from where the previous set ended in the
+  /// order laid; home after the last set with return_home): the programme's order (the cost at
+  /// which the safeguard keeps it), and the order chosen.
   double original_cost = 0.0, cost = 0.0;
+  /// The same problem's optimum (the exact solver: sets of at most kExactByDefaultCourses
+  /// courses, or kMaxExactCourses with measure_gap, or the exact solver's own answer).
   std::optional<double> optimum;
+  /// A lower bound on the same problem's cost (planner::ComputeLowerBound), how it was found
+  /// ("held-karp", "exact", "trivial") and its wall time, s; filled by the run after solving.
+  /// Absent only for a given order that interleaves the sets (no per-set problem).
+  std::optional<double> bound;
+  std::string bound_method;
+  double bound_seconds = 0.0;
+  /// (cost - best lower) / best lower, the best lower being the optimum when known, else the
+  /// bound (a fraction, 0.01 = 1 %); 0 when both are 0; absent when the best lower is 0 and the
+  /// cost is not, or without a bound.
+  std::optional<double> gap;
 };
+
+/// Sets of at most this many courses are also solved exactly by every run (instant there), for
+/// the optimum and the gap; `measure_gap` raises it to planner::kMaxExactCourses.
+inline constexpr int kExactByDefaultCourses = 12;
 
 /// What a run decided, for the report and the summary.
 struct SequenceOutcome {
