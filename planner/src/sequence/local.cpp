@@ -27,9 +27,11 @@
 // candidate move around it is priced and the best improving one (ties: first found) applied;
 // the courses at the changed links are queued again. It ends when the queue is empty.
 //
-// Direction pass (bidirectional). When the queue is empty, every course's direction is chosen
-// anew for the order found, exactly (a shortest path over two states per position, O(n));
-// if that saves anything the changed courses are queued and the descent resumes.
+// Direction pass (bidirectional). When the queue is empty, the direction of every course in the
+// stretch the moves changed (and one either side; the whole tour after the construction) is
+// chosen anew for the order found, exactly, the courses around it as laid (a shortest path
+// over two states per position); if that saves anything the changed courses are queued and
+// the descent resumes. Candidate lists keep their move costs, so the gain test reads no table.
 //
 // Kicks. Each round: 1..3 kicks (each a random stretch of 1..S courses, S = min(30, n / 2),
 // moved to a random place at most 2 S positions away, within its block, laid as it was, in
@@ -56,7 +58,8 @@
 //
 // Work and memory. Up to 1,024 courses every move cost is tabled once ((2n)^2 doubles, 32 MiB
 // at 1,024; a MoveTable problem brings its own); above, costs are computed when needed.
-// Building the lists is O(n^2); a move is priced in O(1) and applied in O(n).
+// Building the lists is O(n^2); a move is priced in O(1) and applied in O(changed positions)
+// table look-ups plus one add per later position.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -127,8 +130,12 @@ std::vector<Visit> NearestNeighbourTour(const SequenceProblem& p) {
 /// For every visit node (2 course + reversed), the k nodes of other courses of the same or a
 /// neighbouring group with the cheapest move into it (in) and out of it (out), ties by node;
 /// forward nodes only if unidirectional.
+struct Candidate {
+  int node = 0;       ///< the other visit's node
+  double cost = 0.0;  ///< the move between them (into or out of the list's node)
+};
 struct NodeLists {
-  std::vector<std::vector<int>> in, out;
+  std::vector<std::vector<Candidate>> in, out;
 };
 
 NodeLists BuildNodeLists(const Tour& tour, const SequenceProblem& p, int k) {
@@ -153,7 +160,7 @@ NodeLists BuildNodeLists(const Tour& tour, const SequenceProblem& p, int k) {
     for (auto* row : {&into, &from}) {
       std::partial_sort(row->begin(), row->begin() + static_cast<std::ptrdiff_t>(kk), row->end());
       auto& list = row == &into ? lists.in[a] : lists.out[a];
-      for (std::size_t i = 0; i < kk; ++i) list.push_back((*row)[i].second);
+      for (std::size_t i = 0; i < kk; ++i) list.push_back({(*row)[i].second, (*row)[i].first});
     }
   }
   return lists;
@@ -182,12 +189,16 @@ class Descent {
     std::int64_t applied = Drain();
     std::vector<Visit> turned;
     while (p_.bidirectional && tour_.Size() > 0) {
-      const double delta = tour_.BestDirections(turned);
+      // Directions afresh over the stretch the moves changed (and one course either side).
+      const int lo = std::max(0, tour_.TouchedBegin() - 1);
+      const int hi = std::min(tour_.Size() - 1, tour_.TouchedEnd() + 1);
+      tour_.ClearTouched();
+      const double delta = tour_.BestDirections(lo, hi, turned);
       if (!(delta < -eps_)) break;
-      for (int x = 0; x < tour_.Size(); ++x) {
-        if (turned[x].reversed != tour_.At(x).reversed) QueueAround(x);
+      for (int x = lo; x <= hi; ++x) {
+        if (turned[x - lo].reversed != tour_.At(x).reversed) QueueAround(x);
       }
-      tour_.Restore(turned, tour_.Cost() + delta);
+      tour_.Turn(lo, turned, delta);
       applied += 1 + Drain();
     }
     return applied;
@@ -267,14 +278,16 @@ void Descent::TryReversals(int x) {
   TryReverse(lo, x, Stretch::kReverse);
   TryReverse(x, hi, Stretch::kReverse);
   const double out = tour_.CostOutOf(x), in = tour_.CostInto(x);
-  for (int v : lists_.out[c]) {  // new link c -> v replaces c's way out
-    if (tour_.Move(cv, detail::NodeVisit(v)) >= out) break;
+  for (const Candidate& nv : lists_.out[c]) {  // new link c -> v replaces c's way out
+    if (nv.cost >= out) break;
+    const int v = nv.node;
     const int y = WhereNode(v);
     if (y > x) TryReverse(x + 1, y, Stretch::kReverse);  // c -> t[k]: stretch x+1..y
     if (y > x) TryReverse(x, y - 1, Stretch::kReverse);  // t[i] = c -> t[k+1] = v
   }
-  for (int u : lists_.in[c]) {  // new link u -> c replaces c's way in
-    if (tour_.Move(detail::NodeVisit(u), cv) >= in) break;
+  for (const Candidate& nu : lists_.in[c]) {  // new link u -> c replaces c's way in
+    if (nu.cost >= in) break;
+    const int u = nu.node;
     const int y = WhereNode(u);
     if (y >= 0 && y < x) TryReverse(y, x - 1, Stretch::kReverse);  // t[i] = u -> t[k+1] = c
     if (y >= 0 && y < x) TryReverse(y + 1, x, Stretch::kReverse);  // t[i-1] = u -> t[k] = c
@@ -288,17 +301,21 @@ void Descent::TryFlips(int x) {
   TryReverse(x, x, Stretch::kFlip);
   TryReverse(std::max(0, tour_.BlockBegin(x)), x, Stretch::kFlip);
   TryReverse(x, std::min(n - 1, tour_.BlockEnd(x)), Stretch::kFlip);
-  for (int v : lists_.out[detail::VisitNode(c)]) {
+  for (const Candidate& nv : lists_.out[detail::VisitNode(c)]) {
+    const int v = nv.node;
     TryReverse(x + 1, Where(detail::Flip(detail::NodeVisit(v))), Stretch::kFlip);
   }
-  for (int u : lists_.in[detail::VisitNode(c)]) {
+  for (const Candidate& nu : lists_.in[detail::VisitNode(c)]) {
+    const int u = nu.node;
     TryReverse(Where(detail::Flip(detail::NodeVisit(u))), x - 1, Stretch::kFlip);
   }
-  for (int v : lists_.out[detail::VisitNode(detail::Flip(c))]) {
+  for (const Candidate& nv : lists_.out[detail::VisitNode(detail::Flip(c))]) {
+    const int v = nv.node;
     const int y = WhereNode(v);
     if (y >= 0) TryReverse(x, y - 1, Stretch::kFlip);
   }
-  for (int u : lists_.in[detail::VisitNode(detail::Flip(c))]) {
+  for (const Candidate& nu : lists_.in[detail::VisitNode(detail::Flip(c))]) {
+    const int u = nu.node;
     const int y = WhereNode(u);
     if (y >= 0) TryReverse(y + 1, x, Stretch::kFlip);
   }
@@ -321,13 +338,15 @@ void Descent::TryOrOpt(int i, int k) {
     const Visit last = how == Stretch::kKeep      ? tour_.At(k)
                        : how == Stretch::kReverse ? tour_.At(i)
                                                   : detail::Flip(tour_.At(i));
-    for (int u : lists_.in[detail::VisitNode(first)]) {
-      if (tour_.Move(detail::NodeVisit(u), first) >= cut_in) break;
+    for (const Candidate& nu : lists_.in[detail::VisitNode(first)]) {
+      if (nu.cost >= cut_in) break;
+      const int u = nu.node;
       const int g = WhereNode(u);
       if (g >= 0) TryChain(i, k, g, how);
     }
-    for (int v : lists_.out[detail::VisitNode(last)]) {
-      if (tour_.Move(last, detail::NodeVisit(v)) >= cut_out) break;
+    for (const Candidate& nv : lists_.out[detail::VisitNode(last)]) {
+      if (nv.cost >= cut_out) break;
+      const int v = nv.node;
       const int h = WhereNode(v);
       if (h >= 0) TryChain(i, k, h - 1, how);
     }
@@ -341,25 +360,29 @@ void Descent::TrySegments(int x) {
   const Visit cv = tour_.At(x);
   const int c = detail::VisitNode(cv);
   const double in = tour_.CostInto(x), out = tour_.CostOutOf(x);
-  for (int u : lists_.in[c]) {  // stretch starts at x, goes after g
-    if (tour_.Move(detail::NodeVisit(u), cv) >= in) break;
+  for (const Candidate& nu : lists_.in[c]) {  // stretch starts at x, goes after g
+    if (nu.cost >= in) break;
+    const int u = nu.node;
     const int g = WhereNode(u);
     if (g < 0 || g + 1 >= n) continue;
     const Visit next = tour_.At(g + 1);
     const double next_in = tour_.CostInto(g + 1);
-    for (int w : lists_.in[detail::VisitNode(next)]) {
-      if (tour_.Move(detail::NodeVisit(w), next) >= next_in) break;
+    for (const Candidate& nw : lists_.in[detail::VisitNode(next)]) {
+      if (nw.cost >= next_in) break;
+      const int w = nw.node;
       TryChain(x, WhereNode(w), g, Stretch::kKeep);
     }
   }
-  for (int v : lists_.out[c]) {  // stretch ends at x, goes after h
-    if (tour_.Move(cv, detail::NodeVisit(v)) >= out) break;
+  for (const Candidate& nv : lists_.out[c]) {  // stretch ends at x, goes after h
+    if (nv.cost >= out) break;
+    const int v = nv.node;
     const int h = WhereNode(v) - 1;
     if (h < 0) continue;
     const Visit prev = tour_.At(h);
     const double prev_out = tour_.CostOutOf(h);
-    for (int w : lists_.out[detail::VisitNode(prev)]) {
-      if (tour_.Move(prev, detail::NodeVisit(w)) >= prev_out) break;
+    for (const Candidate& nw : lists_.out[detail::VisitNode(prev)]) {
+      if (nw.cost >= prev_out) break;
+      const int w = nw.node;
       const int i = WhereNode(w);
       if (i >= 0) TryChain(i, x, h, Stretch::kKeep);
     }
@@ -539,6 +562,8 @@ SequenceSolution SolveLocalSearch(const SequenceProblem& p, const LocalSearchOpt
     s = Search(p, o, t0);
   }
   s.seconds = detail::SecondsSince(t0);
+  std::fprintf(stderr, "n %d cost %.4f it %lld t %.2f\n", p.courses, s.cost,
+               (long long)s.iterations, s.seconds);
   return s;
 }
 

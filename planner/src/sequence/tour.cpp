@@ -41,6 +41,8 @@ Tour::Tour(const SequenceProblem& p, std::vector<Visit> order) : p_(p), t_(std::
   }
   Refresh(0, Size() - 1);
   cost_ = PathCost(p_, t_);
+  touched_lo_ = 0;  // every direction still to choose
+  touched_hi_ = n - 1;
 }
 
 double Tour::Link(int x, int y) const {
@@ -104,6 +106,8 @@ void Tour::Apply(const TourMove& m) {
     }
   }
   cost_ += m.delta;
+  TouchRange(m.kind == TourMove::Kind::kReverse ? m.i : std::min(m.i, m.g + 1),
+             m.kind == TourMove::Kind::kReverse ? m.k : std::max(m.k, m.g));
   // Now and then the whole tour afresh, so the constant shifts below never drift.
   if (++applied_ % kFullRefresh == 0) {
     Refresh(0, Size() - 1);
@@ -112,37 +116,50 @@ void Tour::Apply(const TourMove& m) {
   }
 }
 
-double Tour::BestDirections(std::vector<Visit>& out) const {
+double Tour::BestDirections(int lo, int hi, std::vector<Visit>& out) const {
   const int n = Size();
-  out = t_;
-  if (n == 0 || !p_.bidirectional) return 0.0;
-  // best[x][r]: cheapest way to have laid positions 0..x with position x in direction r.
-  std::vector<std::array<double, 2>> best(static_cast<std::size_t>(n));
-  std::vector<std::array<std::uint8_t, 2>> from(static_cast<std::size_t>(n), {0, 0});
-  for (int r = 0; r < 2; ++r) best[0][r] = S({t_[0].course, r == 1});
-  for (int x = 1; x < n; ++x) {
+  lo = std::max(0, lo);
+  hi = std::min(n - 1, hi);
+  if (lo > hi || !p_.bidirectional) return 0.0;
+  const int len = hi - lo + 1;
+  // best[x][r]: cheapest way to have laid positions lo..lo+x with lo+x in direction r, from
+  // position lo - 1 as it is laid.
+  std::vector<std::array<double, 2>> best(static_cast<std::size_t>(len));
+  std::vector<std::array<std::uint8_t, 2>> from(static_cast<std::size_t>(len), {0, 0});
+  for (int r = 0; r < 2; ++r) best[0][r] = In(lo - 1, {t_[lo].course, r == 1});
+  for (int x = 1; x < len; ++x) {
+    const int at = lo + x;
     for (int r = 0; r < 2; ++r) {
-      const Visit v{t_[x].course, r == 1};
-      const double via0 = best[x - 1][0] + E({t_[x - 1].course, false}, v);
-      const double via1 = best[x - 1][1] + E({t_[x - 1].course, true}, v);
+      const Visit v{t_[at].course, r == 1};
+      const double via0 = best[x - 1][0] + E({t_[at - 1].course, false}, v);
+      const double via1 = best[x - 1][1] + E({t_[at - 1].course, true}, v);
       best[x][r] = via1 < via0 ? via1 : via0;
       from[x][r] = via1 < via0 ? 1 : 0;
     }
   }
-  const double end0 = best[n - 1][0] + F({t_[n - 1].course, false});
-  const double end1 = best[n - 1][1] + F({t_[n - 1].course, true});
+  const double end0 = best[len - 1][0] + Out({t_[hi].course, false}, hi + 1);
+  const double end1 = best[len - 1][1] + Out({t_[hi].course, true}, hi + 1);
+  out.assign(t_.begin() + lo, t_.begin() + hi + 1);
   int r = end1 < end0 ? 1 : 0;
-  for (int x = n - 1; x >= 0; --x) {
+  for (int x = len - 1; x >= 0; --x) {
     out[x].reversed = r == 1;
     r = from[x][r];
   }
-  return std::min(end0, end1) - cost_;
+  const double now = fwd_[hi] - fwd_[lo] + CostInto(lo) + CostOutOf(hi);
+  return std::min(end0, end1) - now;
+}
+
+void Tour::Turn(int lo, const std::vector<Visit>& turned, double delta) {
+  std::copy(turned.begin(), turned.end(), t_.begin() + lo);
+  cost_ += delta;
+  Refresh(lo, lo + static_cast<int>(turned.size()) - 1);
 }
 
 void Tour::Restore(const std::vector<Visit>& order, double cost) {
   t_ = order;
   cost_ = cost;
   Refresh(0, Size() - 1);
+  ClearTouched();  // a saved tour: its directions were chosen when it was saved
 }
 
 void Tour::Refresh(int from, int to) {

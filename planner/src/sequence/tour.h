@@ -5,6 +5,7 @@
 // priced exactly in O(1) even though move costs are not symmetric. With precedence groups
 // (SequenceProblem::group) every group keeps its block of positions; a move that would take
 // a course out of its block is not allowed.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -65,9 +66,19 @@ class Tour {
   double ChainDelta(int i, int k, int g, Stretch how) const;
   /// Applies a move priced by the functions above (O(n)).
   void Apply(const TourMove& m);
-  /// Bidirectional: the best direction of every course for the current order (a shortest
-  /// path over two states per position, O(n)); returns the cost change of adopting it.
-  double BestDirections(std::vector<Visit>& out) const;
+  /// Bidirectional: the best direction of every course at positions lo..hi for the current
+  /// order, the courses around them as laid (a shortest path over two states per position,
+  /// O(hi - lo)); `out` gets those positions' visits; returns the cost change of adopting it.
+  double BestDirections(int lo, int hi, std::vector<Visit>& out) const;
+  /// Adopts directions from BestDirections(lo, ...) and its cost change.
+  void Turn(int lo, const std::vector<Visit>& turned, double delta);
+  /// The positions moves have changed since the last ClearTouched (lo > hi: none).
+  int TouchedBegin() const { return touched_lo_; }
+  int TouchedEnd() const { return touched_hi_; }
+  void ClearTouched() {
+    touched_lo_ = Size();
+    touched_hi_ = -1;
+  }
   /// Replaces the tour (a saved copy) and its cost.
   void Restore(const std::vector<Visit>& order, double cost);
 
@@ -111,7 +122,12 @@ class Tour {
   std::size_t stride_ = 0;       ///< 2n
   std::vector<double> from_start_, to_finish_;  ///< per node
   double cost_ = 0.0;
-  std::int64_t applied_ = 0;  ///< moves applied (every kFullRefresh-th recomputes all)
+  std::int64_t applied_ = 0;             ///< moves applied (every kFullRefresh-th recomputes all)
+  int touched_lo_ = 0, touched_hi_ = 0;  ///< positions changed since ClearTouched
+  void TouchRange(int lo, int hi) {
+    touched_lo_ = std::min(touched_lo_, lo);
+    touched_hi_ = std::max(touched_hi_, hi);
+  }
   static constexpr std::int64_t kFullRefresh = 1024;
 };
 
