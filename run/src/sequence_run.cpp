@@ -2,11 +2,14 @@
 #include "stitchsim/run/sequence_run.h"
 
 #include <chrono>
+#include <iterator>
 #include <ostream>
+#include <thread>
 
 #include "stitchsim/planner/sequence/offpart.h"
 #include "stitchsim/planner/sequence/solver.h"
 #include "stitchsim/process/afp_tows.h"
+#include "stitchsim/run/sequence_timed.h"
 
 namespace stitchsim::run {
 namespace {
@@ -30,7 +33,7 @@ SequenceAnalysis AnalyseForSequence(const SequenceInputs& in, const SequenceOpti
   po.min_overlap_mm2 = scene.head.sequence.min_overlap_mm2;
   po.course_level = options.course_level;
   a.network = planner::BuildPrecedence(*scene.surface, in.program, a.footprints, po);
-  a.ends = SolveCourseEnds(cell, in.program, in.home);
+  a.ends = SolveCourseEnds(cell, in.program, in.home, scene.head.sequence.retract_mm);
   return a;
 }
 
@@ -100,7 +103,7 @@ void SolveSequenceSets(const SequenceOptions& options, const SequenceAnalysis& a
 
 // Off-part costs before and after, per set and overall, in every measure.
 void SequenceCostsOf(const CourseEnds& ends, const MeasureSpec* specs, SequenceOutcome& o) {
-  for (std::size_t mi = 0; mi < 3; ++mi) {
+  for (std::size_t mi = 0; mi < std::size(kMeasures); ++mi) {
     const Measure m = kMeasures[mi];
     const auto before = MoveCosts(ends, o.before, specs[mi], m, o.return_home);
     const auto after = MoveCosts(ends, o.after, specs[mi], m, o.return_home);
@@ -213,9 +216,14 @@ SequenceRun RunSequence(const SequenceInputs& in, const SequenceOptions& options
   }
   SequenceOutcome& o = run.outcome;
   o = SequenceOutcomeOf(in, options, an.network);
-  MeasureSpec specs[3];
-  for (std::size_t mi = 0; mi < 3; ++mi)
+  MeasureSpec specs[std::size(kMeasures)];
+  for (std::size_t mi = 0; mi < std::size(kMeasures); ++mi)
     specs[mi] = SpecOf(kMeasures[mi], *in.loaded.robot, in.axis_weights);
+  // The timed measure's tables are computed on every core (the same whatever their number).
+  auto timed = std::make_shared<TimedModel>(
+      TimedModelOf(*in.loaded.robot, scene, program::Dialect::Default()));
+  timed->threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  specs[static_cast<std::size_t>(Measure::kTimed)].timed = timed;
   if (options.order_file.empty()) {
     SolveSequenceSets(options, an, specs[static_cast<std::size_t>(o.measure)], o, progress);
   } else {
@@ -237,7 +245,7 @@ SequenceRun RunSequence(const SequenceInputs& in, const SequenceOptions& options
     return run;
   }
   SequenceCostsOf(an.ends, specs, o);
-  o.layup = LayupCosts(cell, in.program, specs[0]);
+  o.layup = LayupCosts(cell, in.program, specs[0], *timed);
   o.flown_offpart_before_mm = in.program.offpart_length_mm;
   run.offpart = SequenceOffPart(in, o.after, o.return_home, &o.flown_offpart_after_mm);
   o.seconds = in.load_seconds +
