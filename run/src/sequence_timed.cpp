@@ -48,13 +48,25 @@ bool TimedLineOf(const TimedModel& m, const TimedPoint& a, const TimedPoint& b, 
   return duration > 0.0 || !chord.isZero(0.0) || in.dwell_s > 0.0;
 }
 
+// One line's input for the planner; `moves` false: it neither moves nor dwells (left out).
+struct PlannedLine {
+  bool moves = false;
+  sim::TimedLineInput in;
+};
+
+PlannedLine LineOf(const TimedModel& m, const TimedPoint& a, const TimedPoint& b, bool rapid,
+                   double feed_mm_per_min) {
+  PlannedLine l;
+  l.moves = TimedLineOf(m, a, b, rapid, feed_mm_per_min, l.in);
+  return l;
+}
+
 // Plans lines in order from rest to rest and sums their durations (s).
 class LinesTimer {
  public:
-  explicit LinesTimer(const TimedModel& m) : m_(m), planner_(m.limits, m.timing.law) {}
-  void Add(const TimedPoint& a, const TimedPoint& b, bool rapid, double feed_mm_per_min) {
-    sim::TimedLineInput in;
-    if (TimedLineOf(m_, a, b, rapid, feed_mm_per_min, in)) planner_.Push(in);
+  explicit LinesTimer(const TimedModel& m) : planner_(m.limits, m.timing.law) {}
+  void Add(const PlannedLine& l) {
+    if (l.moves) planner_.Push(l.in);
   }
   double Finish() {
     planner_.Flush();
@@ -65,29 +77,47 @@ class LinesTimer {
   }
 
  private:
-  const TimedModel& m_;
   sim::TimeLawPlanner planner_;
 };
 
 TimedPoint PointAt(const EndPoint& e) { return {&e.pose, &e.q}; }
 
-// The approach's feed of the course whose end is at `row`.
-double ApproachFeed(const CourseEnds& ends, int row) {
-  return ends.approach_feed_mm_per_min[static_cast<std::size_t>(row / 4)];
+const EndPoint& EndAtRow(const CourseEnds& ends, int row) {
+  return row < 0 ? ends.home : ends.ends[static_cast<std::size_t>(row)];
+}
+// Where the head is retracted to from row's end and approaches row's start from (home: home).
+const EndPoint& AboveRow(const CourseEnds& ends, int row) {
+  return row < 0 ? ends.home : ends.raised[static_cast<std::size_t>(row)];
 }
 
-double MoveSeconds(const CourseEnds& ends, int from_row, int to_row, LinesTimer& timer) {
-  const auto at = [&](int row) -> const EndPoint& {
-    return row < 0 ? ends.home : ends.ends[static_cast<std::size_t>(row)];
-  };
-  const auto above = [&](int row) -> const EndPoint& {
-    return row < 0 ? ends.home : ends.raised[static_cast<std::size_t>(row)];
-  };
-  if (from_row >= 0) timer.Add(PointAt(at(from_row)), PointAt(above(from_row)), true, 0.0);
-  timer.Add(PointAt(above(from_row)), PointAt(above(to_row)), true, 0.0);
-  if (to_row >= 0)
-    timer.Add(PointAt(above(to_row)), PointAt(at(to_row)), false, ApproachFeed(ends, to_row));
+// The retract from a lay-up end at `row` (none from home).
+PlannedLine RetractLine(const TimedModel& m, const CourseEnds& ends, int row) {
+  if (row < 0) return {};
+  return LineOf(m, PointAt(EndAtRow(ends, row)), PointAt(AboveRow(ends, row)), true, 0.0);
+}
+
+// The approach onto a lay-up start at `row` at its course's feed (none to home).
+PlannedLine ApproachLine(const TimedModel& m, const CourseEnds& ends, int row) {
+  if (row < 0) return {};
+  const double feed = ends.approach_feed_mm_per_min[static_cast<std::size_t>(row / 4)];
+  return LineOf(m, PointAt(AboveRow(ends, row)), PointAt(EndAtRow(ends, row)), false, feed);
+}
+
+// The move from row `from_row` to `to_row` given its retract and approach (each the same for
+// every move from that end or to that start: the table computes them once).
+double MoveSeconds(const TimedModel& m, const CourseEnds& ends, int from_row, int to_row,
+                   const PlannedLine& retract, const PlannedLine& approach, LinesTimer& timer) {
+  timer.Add(retract);
+  timer.Add(
+      LineOf(m, PointAt(AboveRow(ends, from_row)), PointAt(AboveRow(ends, to_row)), true, 0.0));
+  timer.Add(approach);
   return timer.Finish();
+}
+
+double MoveSeconds(const TimedModel& m, const CourseEnds& ends, int from_row, int to_row,
+                   LinesTimer& timer) {
+  return MoveSeconds(m, ends, from_row, to_row, RetractLine(m, ends, from_row),
+                     ApproachLine(m, ends, to_row), timer);
 }
 
 // Rows of ends.ends of node u of a set: its start (k = 0 or 2) and its end (1 or 3).
@@ -103,13 +133,15 @@ bool NodeAllowed(const CourseEnds& ends, const std::vector<int>& courses, int u,
   return bidirectional && ends.reversible[static_cast<std::size_t>(courses[u / 2])];
 }
 
-// Rows [begin, end) of the table's move matrix.
+// Rows [begin, end) of the table's move matrix; `approach`: the approach line into each node.
 void FillMoveRows(const TimedModel& m, const CourseEnds& ends, const std::vector<int>& courses,
-                  bool bidirectional, int begin, int end, planner::MoveTable& t) {
+                  bool bidirectional, const std::vector<PlannedLine>& approach, int begin, int end,
+                  planner::MoveTable& t) {
   LinesTimer timer(m);
   const int nodes = 2 * static_cast<int>(courses.size());
   for (int u = begin; u < end; ++u) {
     const bool u_ok = NodeAllowed(ends, courses, u, bidirectional);
+    const PlannedLine retract = RetractLine(m, ends, EndRow(courses, u));
     for (int v = 0; v < nodes; ++v) {
       double& cell = t.move[static_cast<std::size_t>(u) * nodes + v];
       if (u / 2 == v / 2) {
@@ -117,7 +149,8 @@ void FillMoveRows(const TimedModel& m, const CourseEnds& ends, const std::vector
       } else if (!u_ok || !NodeAllowed(ends, courses, v, bidirectional)) {
         cell = kUnreachableSeconds;
       } else {
-        cell = MoveSeconds(ends, EndRow(courses, u), StartRow(courses, v), timer);
+        cell = MoveSeconds(m, ends, EndRow(courses, u), StartRow(courses, v), retract,
+                           approach[static_cast<std::size_t>(v)], timer);
       }
     }
   }
@@ -138,7 +171,7 @@ TimedModel TimedModelOf(const sim::RobotModel& robot, const scene::Scene& scene,
 
 double TimedMoveSeconds(const TimedModel& m, const CourseEnds& ends, int from_row, int to_row) {
   LinesTimer timer(m);
-  return MoveSeconds(ends, from_row, to_row, timer);
+  return MoveSeconds(m, ends, from_row, to_row, timer);
 }
 
 std::shared_ptr<const planner::MoveTable> TimedMoveTable(const TimedModel& m,
@@ -155,22 +188,25 @@ std::shared_ptr<const planner::MoveTable> TimedMoveTable(const TimedModel& m,
   for (int u = 0; u < nodes; ++u) {
     const bool ok = NodeAllowed(ends, courses, u, bidirectional);
     t->from_start[static_cast<std::size_t>(u)] =
-        ok ? MoveSeconds(ends, start_row, StartRow(courses, u), timer) : kUnreachableSeconds;
+        ok ? MoveSeconds(m, ends, start_row, StartRow(courses, u), timer) : kUnreachableSeconds;
     if (finish) {
       t->to_finish[static_cast<std::size_t>(u)] =
-          ok ? MoveSeconds(ends, EndRow(courses, u), -1, timer) : kUnreachableSeconds;
+          ok ? MoveSeconds(m, ends, EndRow(courses, u), -1, timer) : kUnreachableSeconds;
     }
   }
-  if (finish) t->start_to_finish = MoveSeconds(ends, start_row, -1, timer);
+  if (finish) t->start_to_finish = MoveSeconds(m, ends, start_row, -1, timer);
   // Contiguous blocks of rows, one per thread: each entry is a function of its pair alone, so
   // the table is the same whatever the number of threads.
+  std::vector<PlannedLine> approach;
+  for (int v = 0; v < nodes; ++v) approach.push_back(ApproachLine(m, ends, StartRow(courses, v)));
   const int threads = std::clamp(m.threads, 1, std::max(1, nodes));
   std::vector<std::thread> pool;
   for (int k = 1; k < threads; ++k) {
     pool.emplace_back(FillMoveRows, std::cref(m), std::cref(ends), std::cref(courses),
-                      bidirectional, nodes * k / threads, nodes * (k + 1) / threads, std::ref(*t));
+                      bidirectional, std::cref(approach), nodes * k / threads,
+                      nodes * (k + 1) / threads, std::ref(*t));
   }
-  FillMoveRows(m, ends, courses, bidirectional, 0, nodes / threads, *t);
+  FillMoveRows(m, ends, courses, bidirectional, approach, 0, nodes / threads, *t);
   for (auto& th : pool) th.join();
   return t;
 }
@@ -180,8 +216,8 @@ double TimedLayupSeconds(const TimedModel& m, const program::AfpCourse& course,
   LinesTimer timer(m);
   for (std::size_t i = 0; i + 1 < course.stations.size() && i + 1 < q.size(); ++i) {
     const auto& st = course.stations[i];
-    timer.Add({&st.pose, &q[i]}, {&course.stations[i + 1].pose, &q[i + 1]},
-              st.motion == program::Motion::kRapid, st.feed_mm_per_min);
+    timer.Add(LineOf(m, {&st.pose, &q[i]}, {&course.stations[i + 1].pose, &q[i + 1]},
+                     st.motion == program::Motion::kRapid, st.feed_mm_per_min));
   }
   return timer.Finish();
 }
