@@ -116,6 +116,28 @@ TEST(SequenceTimed, RanksTwoMovesUnlikeTheTimeMeasure) {
   EXPECT_LT(a, b);
 }
 
+// A lay-up on the time law, docs/timing.md's worked example: two collinear rail-only lines of
+// 1000 mm at 6000 mm/min (10 s each programmed), rail 1 m/s and 2 m/s^2, ramp 0.25 s: one
+// ramp up and one down of 0.25 s around 19.75 s of cruise, 20.25 s blended (like one line of
+// 2000 mm); with an exact stop, two lines of 10.25 s each.
+TEST(SequenceTimed, LayupIsTheWorkedExampleOfTheTimeLaw) {
+  program::AfpCourse course;
+  std::vector<trace::JointVector> q;
+  for (int i = 0; i < 3; ++i) {
+    program::LayupStation st;
+    st.pose.translation() = Eigen::Vector3d(1000.0 * i, 0, 0);
+    st.motion = program::Motion::kFeed;
+    st.feed_mm_per_min = 6000.0;
+    course.stations.push_back(st);
+    q.push_back(EndAt(0, 0, 0, 1.0 * i, 0).q);
+  }
+  for (const bool continuous : {true, false}) {
+    TimedModel m = HandModel(continuous);
+    m.limits.max_acceleration[trace::kRailX] = 2.0;
+    EXPECT_NEAR(TimedLayupSeconds(m, course, q), continuous ? 20.25 : 20.5, 1e-9) << continuous;
+  }
+}
+
 // Four courses at scattered places: every entry of the table is the move priced alone, from
 // the given start and to home; backward visits of a forward-only set (and of a course that
 // cannot be laid backwards) are unreachable; one thread or three give the same bits.
