@@ -3,6 +3,7 @@
 // writes the programme (and a JSON report) whole or not at all (docs/sequence.md). The run is
 // run::RunSequence; this file parses, prints and picks the exit code.
 #include <cstdio>
+#include <iterator>
 #include <memory>
 #include <string>
 
@@ -65,7 +66,7 @@ void PrintSequenceSummary(const run::SequenceOutcome& o) {
                 s.original_cost, s.kept_original ? ", kept" : "", s.solver.c_str(),
                 planner::ToString(s.status), Verdict(s).c_str());
   }
-  for (std::size_t m = 0; m < 3; ++m) {
+  for (std::size_t m = 0; m < std::size(run::kMeasures); ++m) {
     const run::Measure measure = run::kMeasures[m];
     const double tb = o.offpart_before[m] + o.layup[m], ta = o.offpart_after[m] + o.layup[m];
     std::printf("  %-5s off-part %.6g -> %.6g%s%s (%+.1f %%), total %.6g -> %.6g (%+.1f %%)\n",
@@ -86,9 +87,10 @@ int RunSequenceCommand(SequenceArgs& a) {
       !ProgramInputOk(o.program_file))
     return kExitBadInput;
   o.scene_load = SceneLoadOptions();
-  o.measure = a.cost == "time"   ? run::Measure::kTime
-              : a.cost == "tool" ? run::Measure::kTool
-                                 : run::Measure::kAxes;
+  o.measure = a.cost == "time"    ? run::Measure::kTime
+              : a.cost == "tool"  ? run::Measure::kTool
+              : a.cost == "timed" ? run::Measure::kTimed
+                                  : run::Measure::kAxes;
   o.solver = a.solver == "exact"  ? run::SequenceSolver::kExact
              : a.solver == "seed" ? run::SequenceSolver::kSeed
                                   : run::SequenceSolver::kLocal;
@@ -136,8 +138,10 @@ void AddSequenceCommand(CLI::App& app, int& exit_code) {
       ->required();
   cmd->add_option("-o,--output", a->run.output_file, "Programme file to write")->required();
   cmd->add_option("--report", a->report, "JSON report: costs per set and the course order");
-  cmd->add_option("--cost", a->cost, "Cost to minimise: axes (seed eq. 3.4), time, tool")
-      ->check(CLI::IsMember({"axes", "time", "tool"}));
+  cmd->add_option("--cost", a->cost,
+                  "Cost to minimise: axes (seed eq. 3.4), time, tool, timed (the controller's "
+                  "time law)")
+      ->check(CLI::IsMember({"axes", "time", "tool", "timed"}));
   cmd->add_option("--solver", a->solver,
                   "local (ours, default), seed (seed 004's method) or exact (dynamic programming, "
                   "sets of up to 16 courses; larger sets use local)")

@@ -3,8 +3,6 @@
 #include "stitchsim/run/status.h"
 
 namespace stitchsim::run {
-namespace {
-
 sim::TimingOptions TimingOptionsFor(const program::Dialect& dialect,
                                     const sim::ExecuteOptions& execute) {
   sim::TimingOptions t;
@@ -14,6 +12,8 @@ sim::TimingOptions TimingOptionsFor(const program::Dialect& dialect,
   t.settle_time_s = execute.settle_time_s;
   return t;
 }
+
+namespace {
 
 // The MuJoCo prototype; with dynamics, the cell must have a servo for every joint.
 std::unique_ptr<sim::MujocoCell> MakeMujoco(const RunModel& m, DiagnosticSink& sink) {

@@ -3,6 +3,8 @@
 #include "stitchsim/run/sequence_costs.h"
 
 #include "stitchsim/common/units.h"
+#include "stitchsim/planner/sequence/offpart.h"
+#include "stitchsim/run/sequence_timed.h"
 #include "stitchsim/sim/kinematics.h"
 
 namespace stitchsim::run {
@@ -28,6 +30,8 @@ EndPoint SolveCourseEnd(const sim::CellSetup& cell, const Eigen::Isometry3d& pos
   EndPoint e;
   const sim::ToolPoseSolution s = SolveLayupPose(cell, pose, entry, previous);
   e.tool = pose.translation();
+  e.pose = pose;
+  e.q = s.ik.joints;
   e.ok = trace::IkUsable(s.ik.status);
   if (!e.ok)
     e.reason = s.ik.reason.empty() ? std::string(trace::ToString(s.ik.status)) : s.ik.reason;
@@ -55,6 +59,8 @@ const char* MeasureName(Measure m) {
       return "time";
     case Measure::kTool:
       return "tool";
+    case Measure::kTimed:
+      return "timed";
   }
   return "?";
 }
@@ -64,6 +70,7 @@ const char* MeasureUnit(Measure m) {
     case Measure::kAxes:
       return "";
     case Measure::kTime:
+    case Measure::kTimed:
       return "s";
     case Measure::kTool:
       return "mm";
@@ -79,7 +86,7 @@ std::vector<double> AxesOf(const trace::JointVector& q) {
 }
 
 CourseEnds SolveCourseEnds(const sim::CellSetup& cell, const program::AfpProgram& program,
-                           const Eigen::Isometry3d& home) {
+                           const Eigen::Isometry3d& home, double retract_mm) {
   CourseEnds out;
   const trace::JointVector home_q = sim::HomeJoints(*cell.robot, 0.0);
   out.home = SolveCourseEnd(cell, home, nullptr, &home_q);
@@ -92,10 +99,16 @@ CourseEnds SolveCourseEnds(const sim::CellSetup& cell, const program::AfpProgram
       trace::JointVector qa;
       EndPoint ea = SolveCourseEnd(cell, a, &c.entry, &home_q, &qa);
       EndPoint eb = SolveCourseEnd(cell, b, &c.entry, &qa);
+      trace::JointVector qb = eb.q;
+      out.raised.push_back(SolveCourseEnd(cell, planner::RaisedPose(a, retract_mm), &c.entry, &qa));
+      out.raised.push_back(SolveCourseEnd(cell, planner::RaisedPose(b, retract_mm), &c.entry, &qb));
       out.ends.push_back(std::move(ea));
       out.ends.push_back(std::move(eb));
     }
     const std::size_t k = out.ends.size() - 4;
+    for (std::size_t r = k; r < k + 4; ++r) out.ends[r].row = static_cast<int>(r);
+    out.approach_feed_mm_per_min.push_back(c.entry.feed_mm_per_min.value_or(
+        c.stations.empty() ? 0.0 : c.stations.front().feed_mm_per_min));
     out.reversible.push_back(out.ends[k + 2].ok && out.ends[k + 3].ok);
   }
   return out;
@@ -122,6 +135,8 @@ MeasureSpec SpecOf(Measure m, const sim::RobotModel& robot,
       s.norm = planner::CostNorm::kL2;
       s.weights = {1.0, 1.0, 1.0};
       break;
+    case Measure::kTimed:
+      break;
   }
   return s;
 }
@@ -137,6 +152,13 @@ planner::SequenceProblem SetProblem(const CourseEnds& ends, const std::vector<in
   planner::SequenceProblem p = MeasureOnlyProblem(spec);
   p.courses = static_cast<int>(courses.size());
   p.bidirectional = bidirectional;
+  if (m == Measure::kTimed) {
+    p.dim = 0;
+    p.table =
+        TimedMoveTable(*spec.timed, ends, courses, bidirectional, start.row, finish != nullptr);
+    if (finish != nullptr) p.finish = std::vector<double>{};
+    return p;
+  }
   p.points.reserve(courses.size() * 4 * static_cast<std::size_t>(p.dim));
   for (const int c : courses) {
     const bool rev_ok = ends.reversible[static_cast<std::size_t>(c)];
@@ -153,8 +175,18 @@ planner::SequenceProblem SetProblem(const CourseEnds& ends, const std::vector<in
 std::vector<double> MoveCosts(const CourseEnds& ends,
                               const std::vector<program::CourseVisit>& visits,
                               const MeasureSpec& spec, Measure m, bool finish) {
-  const planner::SequenceProblem p = MeasureOnlyProblem(spec);
   std::vector<double> out;
+  if (m == Measure::kTimed) {
+    int from = -1;  // home
+    for (const auto& v : visits) {
+      const int row = 4 * v.course + (v.reversed ? 2 : 0);
+      out.push_back(TimedMoveSeconds(*spec.timed, ends, from, row));
+      from = row + 1;
+    }
+    if (finish) out.push_back(TimedMoveSeconds(*spec.timed, ends, from, -1));
+    return out;
+  }
+  const planner::SequenceProblem p = MeasureOnlyProblem(spec);
   std::vector<double> here = PointOf(ends.home, m);
   for (const auto& v : visits) {
     const std::size_t k = 4 * static_cast<std::size_t>(v.course) + (v.reversed ? 2 : 0);
@@ -170,13 +202,14 @@ std::vector<double> MoveCosts(const CourseEnds& ends,
 }
 
 Costs LayupCosts(const sim::CellSetup& cell, const program::AfpProgram& program,
-                 const MeasureSpec& axes_spec) {
+                 const MeasureSpec& axes_spec, const TimedModel& timed) {
   Costs c{};
   const planner::SequenceProblem p = MeasureOnlyProblem(axes_spec);
   trace::JointVector q = sim::HomeJoints(*cell.robot, 0.0);
   for (const auto& course : program.courses) {
     c[2] += course.layup_length_mm;
     std::vector<double> prev;
+    std::vector<trace::JointVector> joints;
     for (std::size_t i = 0; i < course.stations.size(); ++i) {
       const auto& st = course.stations[i];
       if (i + 1 < course.stations.size() && st.feed_mm_per_min > 0.0) {
@@ -185,10 +218,12 @@ Costs LayupCosts(const sim::CellSetup& cell, const program::AfpProgram& program,
         c[1] += len / st.feed_mm_per_min * 60.0;
       }
       q = SolveLayupPose(cell, st.pose, &course.entry, &q).ik.joints;
+      joints.push_back(q);
       std::vector<double> pt = AxesOf(q);
       if (!prev.empty()) c[0] += planner::MoveCost(p, prev.data(), pt.data());
       prev = std::move(pt);
     }
+    c[3] += TimedLayupSeconds(timed, course, joints);
   }
   return c;
 }

@@ -12,10 +12,14 @@ namespace {
 using nlohmann::json;
 
 json SequenceCostsJson(const Costs& c) {
-  return json{{"axes", c[0]}, {"time_s", c[1]}, {"tool_mm", c[2]}};
+  return json{{"axes", c[0]}, {"time_s", c[1]}, {"tool_mm", c[2]}, {"timed_s", c[3]}};
 }
 
-Costs SumOfCosts(const Costs& a, const Costs& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+Costs SumOfCosts(const Costs& a, const Costs& b) {
+  Costs sum{};
+  for (std::size_t m = 0; m < sum.size(); ++m) sum[m] = a[m] + b[m];
+  return sum;
+}
 
 json OptionalJson(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
 

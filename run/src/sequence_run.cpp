@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <numeric>
 #include <ostream>
 #include <thread>
@@ -11,6 +12,7 @@
 #include "stitchsim/planner/sequence/offpart.h"
 #include "stitchsim/planner/sequence/solver.h"
 #include "stitchsim/process/afp_tows.h"
+#include "stitchsim/run/sequence_timed.h"
 
 namespace stitchsim::run {
 namespace {
@@ -41,7 +43,7 @@ SequenceAnalysis AnalyseForSequence(const SequenceInputs& in, const SequenceOpti
   const process::TowLayout layout = process::TowLayoutOf(scene.head);
   a.footprints = planner::CourseFootprints(*scene.surface, layout, in.program);
   a.network = PrecedenceOf(in, a.footprints, options.course_level);
-  a.ends = SolveCourseEnds(cell, in.program, in.home);
+  a.ends = SolveCourseEnds(cell, in.program, in.home, scene.head.sequence.retract_mm);
   return a;
 }
 
@@ -244,7 +246,7 @@ void SolveAndJoin(const SequenceOptions& options, const SequenceAnalysis& an,
 
 // Off-part costs before and after, per set and overall, in every measure.
 void SequenceCostsOf(const CourseEnds& ends, const MeasureSpec* specs, SequenceOutcome& o) {
-  for (std::size_t mi = 0; mi < 3; ++mi) {
+  for (std::size_t mi = 0; mi < std::size(kMeasures); ++mi) {
     const Measure m = kMeasures[mi];
     const auto before = MoveCosts(ends, o.before, specs[mi], m, o.return_home);
     const auto after = MoveCosts(ends, o.after, specs[mi], m, o.return_home);
@@ -358,9 +360,14 @@ SequenceRun RunSequence(const SequenceInputs& in, const SequenceOptions& options
   }
   SequenceOutcome& o = run.outcome;
   o = SequenceOutcomeOf(in, options, an.network);
-  MeasureSpec specs[3];
-  for (std::size_t mi = 0; mi < 3; ++mi)
+  MeasureSpec specs[std::size(kMeasures)];
+  for (std::size_t mi = 0; mi < std::size(kMeasures); ++mi)
     specs[mi] = SpecOf(kMeasures[mi], *in.loaded.robot, in.axis_weights);
+  // The timed measure's tables are computed on --jobs threads (the same whatever their number).
+  auto timed = std::make_shared<TimedModel>(
+      TimedModelOf(*in.loaded.robot, scene, program::Dialect::Default()));
+  timed->threads = LocalOptionsOf(options).jobs;
+  specs[static_cast<std::size_t>(Measure::kTimed)].timed = timed;
   const MeasureSpec& spec = specs[static_cast<std::size_t>(o.measure)];
   if (options.order_file.empty()) {
     SolveAndJoin(options, an, spec, o, progress);
@@ -395,7 +402,7 @@ SequenceRun RunSequence(const SequenceInputs& in, const SequenceOptions& options
   }
   BoundSets(options, an.ends, specs[static_cast<std::size_t>(o.measure)], o);
   SequenceCostsOf(an.ends, specs, o);
-  o.layup = LayupCosts(cell, in.program, specs[0]);
+  o.layup = LayupCosts(cell, in.program, specs[0], *timed);
   o.flown_offpart_before_mm = in.program.offpart_length_mm;
   run.offpart = SequenceOffPart(in, o.after, o.return_home, &o.flown_offpart_after_mm);
   o.seconds = in.load_seconds +

@@ -11,6 +11,7 @@
 
 #include "sequence_fixture.h"
 #include "stitchsim/common/units.h"
+#include "stitchsim/run/sequence_timed.h"
 
 namespace stitchsim::run {
 namespace {
@@ -23,7 +24,8 @@ class SequenceCosts : public ::testing::Test {
     inputs_ = new SequenceInputs(test::LoadOrFail(test::SeqPlateOptions(file)));
     std::filesystem::remove(file);
     cell_ = new sim::CellSetup(sim::MakeCellSetup(*inputs_->loaded.robot, *inputs_->loaded.scene));
-    ends_ = new CourseEnds(SolveCourseEnds(*cell_, inputs_->program, inputs_->home));
+    ends_ = new CourseEnds(SolveCourseEnds(*cell_, inputs_->program, inputs_->home,
+                                           inputs_->loaded.scene->head.sequence.retract_mm));
   }
   static void TearDownTestSuite() {
     delete ends_;
@@ -135,7 +137,9 @@ TEST_F(SequenceCosts, MoveCostsOfATinyOrderByHand) {
 // the same whatever the order (it does not depend on one).
 TEST_F(SequenceCosts, LayupCostsByHand) {
   const MeasureSpec axes = SpecOf(Measure::kAxes, *inputs_->loaded.robot, inputs_->axis_weights);
-  const Costs c = LayupCosts(*cell_, Program(), axes);
+  const TimedModel timed =
+      TimedModelOf(*inputs_->loaded.robot, *inputs_->loaded.scene, program::Dialect::Default());
+  const Costs c = LayupCosts(*cell_, Program(), axes, timed);
   double tool = 0.0, time = 0.0;
   for (const auto& course : Program().courses) {
     for (std::size_t i = 1; i < course.stations.size(); ++i) {

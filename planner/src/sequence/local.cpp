@@ -562,8 +562,6 @@ SequenceSolution SolveLocalSearch(const SequenceProblem& p, const LocalSearchOpt
     s = Search(p, o, t0);
   }
   s.seconds = detail::SecondsSince(t0);
-  std::fprintf(stderr, "n %d cost %.4f it %lld t %.2f\n", p.courses, s.cost,
-               (long long)s.iterations, s.seconds);
   return s;
 }
 

@@ -21,12 +21,6 @@ OffPartBlock Rapid(const Eigen::Isometry3d& pose, std::string comment) {
   return b;
 }
 
-Eigen::Isometry3d Raised(const Eigen::Isometry3d& pose, double h) {
-  Eigen::Isometry3d r = pose;
-  r.translation() += h * pose.linear().col(2);
-  return r;
-}
-
 // Lifts `p` to `clearance` off the surface along the normal at its foot point.
 Eigen::Vector3d Lifted(const geom::Surface& s, const Eigen::Vector3d& p, double clearance) {
   const geom::SurfaceProjection f = s.Project(p);
@@ -93,6 +87,12 @@ void Travel(const geom::Surface& s, const Eigen::Isometry3d& a, const Eigen::Iso
 
 }  // namespace
 
+Eigen::Isometry3d RaisedPose(const Eigen::Isometry3d& pose, double h) {
+  Eigen::Isometry3d r = pose;
+  r.translation() += h * pose.linear().col(2);
+  return r;
+}
+
 double TwistAboutZ(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   const Eigen::Matrix3d r = a.transpose() * b;
   return std::atan2(r(1, 0) - r(0, 1), r(0, 0) + r(1, 1));
@@ -119,13 +119,14 @@ std::vector<OffPartBlock> OffPartPath(const geom::Surface& surface,
   std::vector<OffPartBlock> out;
   std::optional<Eigen::Isometry3d> here;
   if (from) {
-    here = from->on_surface ? Raised(from->pose, options.retract_mm) : from->pose;
+    here = from->on_surface ? RaisedPose(from->pose, options.retract_mm) : from->pose;
     if (from->on_surface) out.push_back(Rapid(*here, "retract"));
   }
   if (!to) {
     return out;
   }
-  const Eigen::Isometry3d above = to->on_surface ? Raised(to->pose, options.retract_mm) : to->pose;
+  const Eigen::Isometry3d above =
+      to->on_surface ? RaisedPose(to->pose, options.retract_mm) : to->pose;
   if (here) {
     Travel(surface, *here, above, options, out);
   } else {

@@ -58,6 +58,11 @@ struct RunData {
   sim::ExecuteOptions execute;  ///< the model's, pointed at this data's kinematics and world
 };
 
+/// The time law's settings a run of `dialect` uses (its trajectory section) and the executor's
+/// settle time: what verify times with, and `sequence --cost timed` too.
+sim::TimingOptions TimingOptionsFor(const program::Dialect& dialect,
+                                    const sim::ExecuteOptions& execute);
+
 /// Builds the model from a loaded scene (moved in) and the programme's dialect, stitch length
 /// and declared count; errors (collision world, MuJoCo model, no servos for dynamics) into
 /// `sink`, nullptr then.

@@ -22,6 +22,10 @@ struct OffPartOptions {
   std::optional<double> turn_about_z_rad;
 };
 
+/// `pose` moved `h` mm along its own tool z (up, off the part): where a retract ends and an
+/// approach begins.
+Eigen::Isometry3d RaisedPose(const Eigen::Isometry3d& pose, double h);
+
 /// Signed angle (radians, in (-pi, pi]) about the tool z from orientation `a` to `b`: the
 /// z component of the relative rotation (exact when they differ by a turn about z only).
 double TwistAboutZ(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b);
