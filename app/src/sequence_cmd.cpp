@@ -66,6 +66,13 @@ void PrintSequenceSummary(const run::SequenceOutcome& o) {
                 s.original_cost, s.kept_original ? ", kept" : "", s.solver.c_str(),
                 planner::ToString(s.status), Verdict(s).c_str());
   }
+  if (o.joined_saving > 0.0)
+    std::printf("  sets solved jointly with their neighbours: %.6g saved\n", o.joined_saving);
+  if (o.course_level)
+    std::printf("  precedence: %s-level answer taken (both solved, the cheaper kept)\n",
+                o.precedence.c_str());
+  if (o.kept_programme)
+    std::printf("  programme order kept: the answer cost more than the programme's\n");
   for (std::size_t m = 0; m < std::size(run::kMeasures); ++m) {
     const run::Measure measure = run::kMeasures[m];
     const double tb = o.offpart_before[m] + o.layup[m], ta = o.offpart_after[m] + o.layup[m];

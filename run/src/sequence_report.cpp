@@ -103,6 +103,9 @@ void WriteSequenceJson(const SequenceOutcome& o, const program::AfpProgram& prog
   j["bidirectional"] = o.bidirectional;
   j["return_home"] = o.return_home;
   j["course_level"] = o.course_level;
+  j["precedence"] = o.precedence;
+  j["joined_saving"] = o.joined_saving;
+  j["kept_programme"] = o.kept_programme;
   j["seconds"] = o.seconds;
   json sets = json::array();
   for (std::size_t k = 0; k < o.sets.size(); ++k) sets.push_back(SequenceSetJson(k, o.sets[k]));
