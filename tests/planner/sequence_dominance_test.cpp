@@ -19,21 +19,16 @@ namespace {
 namespace fs = std::filesystem;
 const fs::path kDominanceTsplibDir = fs::path(STITCHSIM_SOURCE_DIR) / "bench" / "data" / "tsplib";
 
-/// A small, deterministic budget (rounds, not seconds) so that the test is fast and repeatable.
-LocalSearchOptions SmallBudget() {
-  LocalSearchOptions o;
-  o.max_rounds = 100;
-  o.stagnation = 50;
-  o.starts = 1;
-  return o;
-}
-
 /// Solves p forward-only and bidirectional; the bidirectional answer must cost no more.
 void ExpectBidirectionalNoWorse(SequenceProblem p, const std::string& what) {
+  LocalSearchOptions budget;  // small and deterministic (rounds, not seconds): a fast test
+  budget.max_rounds = 100;
+  budget.stagnation = 50;
+  budget.starts = 1;
   p.bidirectional = false;
-  const SequenceSolution forward = SolveLocalSearch(p, SmallBudget());
+  const SequenceSolution forward = SolveLocalSearch(p, budget);
   p.bidirectional = true;
-  const SequenceSolution both = SolveLocalSearch(p, SmallBudget());
+  const SequenceSolution both = SolveLocalSearch(p, budget);
   // Each answer priced again by PathCost, not taken from the solver.
   p.bidirectional = false;
   const double forward_cost = PathCost(p, forward.order);
