@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 const fs::path kDominanceTsplibDir = fs::path(STITCHSIM_SOURCE_DIR) / "bench" / "data" / "tsplib";
 
 /// Solves p forward-only and bidirectional; the bidirectional answer must cost no more.
-void ExpectBidirectionalNoWorse(SequenceProblem p, const std::string& what) {
+void ExpectBidirectionalNoWorse(SequenceProblem p, const std::string& what, double optimum = 0.0) {
   LocalSearchOptions budget;  // small and deterministic (rounds, not seconds): a fast test
   budget.max_rounds = 100;
   budget.stagnation = 50;
@@ -37,6 +37,9 @@ void ExpectBidirectionalNoWorse(SequenceProblem p, const std::string& what) {
   EXPECT_EQ(forward_cost, forward.cost) << what;
   EXPECT_EQ(both_cost, both.cost) << what;
   for (const Visit& v : forward.order) ASSERT_FALSE(v.reversed) << what;
+  // No order beats the published optimum: a cost below it would mean a misread instance.
+  EXPECT_GE(forward_cost, optimum) << what;
+  EXPECT_GE(both_cost, optimum) << what;
   EXPECT_LE(both_cost, forward_cost * (1 + 1e-12))
       << what << ": bidirectional " << both_cost << " against forward-only " << forward_cost;
 }
@@ -50,7 +53,7 @@ TEST(SequenceDominance, BidirectionalNeverWorseOnTsplibInstances) {
     const auto in = ReadTsplib(
         (kDominanceTsplibDir / (o.name + (o.symmetric ? ".tsp" : ".atsp"))).string(), sink);
     ASSERT_TRUE(in.has_value()) << o.name;
-    ExpectBidirectionalNoWorse(TsplibProblem(*in, false), o.name);
+    ExpectBidirectionalNoWorse(TsplibProblem(*in, false), o.name, o.optimum);
   }
 }
 
