@@ -26,10 +26,11 @@ inline std::filesystem::path SequenceTestDir() {
   return dir;
 }
 
-/// Plans `plies` of seq_plate, in that order, into `file` (one M70 each).
-inline void PlanSeqPlate(const std::vector<std::string>& plies, const std::filesystem::path& file) {
+/// Plans `plies` of seq_plate (or of `scene`), in that order, into `file` (one M70 each).
+inline void PlanSeqPlate(const std::vector<std::string>& plies, const std::filesystem::path& file,
+                         const std::filesystem::path& scene = kSeqPlate) {
   DiagnosticSink sink;
-  const auto loaded = LoadScene(kSeqPlate, {}, sink);
+  const auto loaded = LoadScene(scene, {}, sink);
   ASSERT_TRUE(loaded.has_value());
   std::vector<planner::PlyPlan> plans;
   for (const std::string& name : plies) {
@@ -45,11 +46,12 @@ inline void PlanSeqPlate(const std::vector<std::string>& plies, const std::files
   planner::WritePlyProgram(ptrs, *loaded->scene, program::Dialect::Default(), out);
 }
 
-/// Options for a run of `programme` on seq_plate.
-inline SequenceOptions SeqPlateOptions(const std::filesystem::path& programme) {
+/// Options for a run of `programme` on seq_plate (or on `scene`).
+inline SequenceOptions SeqPlateOptions(const std::filesystem::path& programme,
+                                       const std::filesystem::path& scene = kSeqPlate) {
   SequenceOptions o;
   o.program_file = programme.string();
-  o.scene_file = kSeqPlate.string();
+  o.scene_file = scene.string();
   o.output_file = "out.nc";
   return o;
 }
