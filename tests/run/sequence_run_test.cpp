@@ -163,8 +163,7 @@ TEST_F(SequenceRunTest, EachSetSaysHowItsSolverStopped) {
   ASSERT_GE(cut.outcome.sets[0].courses.size(), 3u);  // fewer: no rounds to cut
   EXPECT_EQ(cut.outcome.sets[0].status, planner::SolveStatus::kTimeLimit);
   o.time_limit_s = 0;
-  EXPECT_EQ(RunSequence(in, o, nullptr).outcome.sets[0].status,
-            planner::SolveStatus::kStagnation);
+  EXPECT_EQ(RunSequence(in, o, nullptr).outcome.sets[0].status, planner::SolveStatus::kStagnation);
 }
 
 TEST_F(SequenceRunTest, BadInputsAreDiagnosticsOrErrors) {
@@ -214,6 +213,54 @@ TEST_F(SequenceRunTest, AnUnreachableHomeIsAStatusWithItsMessage) {
             in.program.file_name + ":" + std::to_string(c.layup_last_line) +
                 ": error[sequence-unreachable]: course " + std::to_string(c.number) + " of ply " +
                 std::to_string(c.ply) + ": the cell cannot reach its lay-up end (why)");
+}
+
+// The sum of the sets' costs in the chosen measure: the whole order's cost, move by move.
+double TotalOf(const SequenceOutcome& o) {
+  double total = 0.0;
+  for (const SetOutcome& s : o.sets) total += s.cost;
+  return total;
+}
+
+// Threads run the local search's starts and the timed tables: the order written is the same
+// for any number. The joins save something or nothing, never a negative amount.
+TEST_F(SequenceRunTest, ThreadsDoNotChangeTheOrderAndJoinsNeverCostMore) {
+  SequenceOptions o = test::SeqPlateOptions(dir_path() / "base_pad.nc");
+  o.bidirectional = true;
+  o.return_home = true;
+  o.time_limit_s = 0;
+  const SequenceInputs in = test::LoadOrFail(o);
+  o.jobs = 1;
+  const SequenceRun one = RunSequence(in, o, nullptr);
+  o.jobs = 2;
+  const SequenceRun two = RunSequence(in, o, nullptr);
+  ASSERT_EQ(one.status, SequenceStatus::kOk);
+  ASSERT_EQ(two.status, SequenceStatus::kOk);
+  EXPECT_EQ(one.outcome.after, two.outcome.after);
+  EXPECT_GE(one.outcome.joined_saving, 0.0);
+  // The sets' costs (each from where the previous set ends) add up to the order's cost in the
+  // chosen measure (axes), priced move by move.
+  const double total = one.outcome.offpart_after[0];
+  EXPECT_NEAR(TotalOf(one.outcome), total, 1e-9 * (1 + total));
+  // Never dearer than the programme's order (the safeguard on the whole).
+  EXPECT_LE(one.outcome.offpart_after[0], one.outcome.offpart_before[0]);
+}
+
+// --course-level allows every ply-level order: its answer is never dearer than the ply-level
+// run's, and the report names whose answer it took.
+TEST_F(SequenceRunTest, CourseLevelIsNeverDearerThanPlyLevel) {
+  SequenceOptions o = test::SeqPlateOptions(dir_path() / "base_pad.nc");
+  o.bidirectional = true;
+  o.time_limit_s = 0;
+  const SequenceInputs in = test::LoadOrFail(o);
+  const SequenceRun ply = RunSequence(in, o, nullptr);
+  o.course_level = true;
+  const SequenceRun course = RunSequence(in, o, nullptr);
+  ASSERT_EQ(ply.status, SequenceStatus::kOk);
+  ASSERT_EQ(course.status, SequenceStatus::kOk);
+  EXPECT_EQ(ply.outcome.precedence, "ply");
+  EXPECT_TRUE(course.outcome.precedence == "ply" || course.outcome.precedence == "course");
+  EXPECT_LE(course.outcome.offpart_after[0], ply.outcome.offpart_after[0] * (1 + 1e-12));
 }
 
 }  // namespace

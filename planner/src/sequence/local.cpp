@@ -44,7 +44,7 @@
 // Starts and stops. options.starts independent starts (default 2), each from the same
 // construction with its own kick sequence (std::mt19937_64 seeded with the start's number);
 // the cheapest answer wins, ties to the lower start. A start stops when `stagnation` rounds in
-// a row found nothing cheaper (default max(1500, 2 n)) or after max_rounds (default 50 times
+// a row found nothing cheaper (default max(5000, 10 n)) or after max_rounds (default 50 times
 // that): a count of rounds, so the answer is the same on any machine. options.jobs threads
 // run the starts; the answer does not depend on how many. Only time_limit_s reads the clock
 // (between rounds); when it cuts a start, the answer is the best found so far and says so.
@@ -87,8 +87,8 @@ constexpr int kMaxChain = 3;
 constexpr int kMaxKickStretch = 30;
 constexpr std::uint64_t kMaxKicks = 3;
 constexpr int kDefaultStarts = 2;
-constexpr std::int64_t kMinStagnation = 1500;
-constexpr std::int64_t kStagnationPerCourse = 2;
+constexpr std::int64_t kMinStagnation = 5000;
+constexpr std::int64_t kStagnationPerCourse = 10;
 constexpr std::int64_t kRoundsPerStagnation = 50;
 
 int GroupOf(const SequenceProblem& p, int course) { return p.group.empty() ? 0 : p.group[course]; }
