@@ -18,7 +18,7 @@
 namespace stitchsim::planner {
 namespace {
 
-std::string Num(double v, const char* format = "%.6f") {
+std::string PlyNum(double v, const char* format = "%.6f") {
   if (std::abs(v) < 5e-7) v = 0.0;
   char buf[64];
   std::snprintf(buf, sizeof(buf), format, v);
@@ -74,7 +74,7 @@ class PlyWriter {
       b_.m_codes = {d_.m.ply_start};
       b_.param = plan_->ply_index;
       b_.comment =
-          "PLY name=" + plan_->ply_name + " angle=" + Num(plan_->angle_rad * 180.0 / kPi, "%g");
+          "PLY name=" + plan_->ply_name + " angle=" + PlyNum(plan_->angle_rad * 180.0 / kPi, "%g");
       w_.Write(b_);
       for (const PlyCourse& c : plan_->courses) WriteCourse(c);
     }
@@ -180,7 +180,7 @@ void WritePlyTowsCsv(const PlyPlan& plan, std::ostream& out) {
           for (double v :
                {seg.start_mm, seg.end_mm, p.s_mm, l.x(), l.y(), l.z(), r.x(), r.y(), r.z()}) {
             text += ',';
-            text += Num(v);
+            text += PlyNum(v);
           }
           text += '\n';
         }

@@ -46,7 +46,7 @@ double Above(const geom::Surface& s, const Eigen::Vector3d& p) {
 
 // Height of a constraint's top above the surface: the largest over its corners (box) or
 // vertices (mesh).
-double HeightAboveSurface(const scene::Constraint& c, const geom::Surface& s) {
+double ConstraintHeightAboveSurface(const scene::Constraint& c, const geom::Surface& s) {
   auto above = [&](const Eigen::Vector3d& p) { return Above(s, p); };
   double h = 0.0;
   if (c.shape == scene::Constraint::Shape::kMesh) {
@@ -282,7 +282,7 @@ std::optional<std::vector<scene::Footprint>> Footprints(const scene::Scene& scen
 std::optional<double> TallestConstraintMm(const scene::Scene& scene, DiagnosticSink& sink) {
   double tallest_mm = 0.0;
   for (const scene::Constraint& c : scene.constraints) {
-    const double h = HeightAboveSurface(c, *scene.surface);
+    const double h = ConstraintHeightAboveSurface(c, *scene.surface);
     if (scene.head.envelope && h >= scene.head.envelope->height_mm) {
       sink.Error("plan-raster-constraint-too-tall", c.where,
                  "constraint '" + c.name + "' rises " + Num(h) +

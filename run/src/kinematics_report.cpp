@@ -16,7 +16,7 @@ namespace {
 static_assert(kCliJointCount == sim::kNumJoints);
 
 // Keys in the order written: status first, details after.
-using json = nlohmann::ordered_json;
+using ordered_json = nlohmann::ordered_json;
 
 geom::EulerOrder DialectEulerOrder() { return program::EulerOrderOf(program::Dialect::Default()); }
 
@@ -39,7 +39,7 @@ std::vector<double> JointsForCli(const sim::JointVector& q) {
 }
 
 // A pose as the dialect writes it: translation (mm if `pose` is in mm) and A B C degrees.
-json PoseJson(const Eigen::Isometry3d& pose, double length_scale) {
+ordered_json PoseJson(const Eigen::Isometry3d& pose, double length_scale) {
   const Eigen::Vector3d t = pose.translation() * length_scale;
   const Eigen::Vector3d abc =
       geom::EulerFromRotation(DialectEulerOrder(), pose.linear()) * kRadToDeg;
@@ -47,9 +47,9 @@ json PoseJson(const Eigen::Isometry3d& pose, double length_scale) {
 }
 
 // Per joint: name, value, limits (CLI units) and whether the value is within them.
-json LimitsJson(const sim::RobotModel& robot, const sim::JointVector& q, double tolerance,
-                bool& all_within) {
-  json out = json::array();
+ordered_json LimitsJson(const sim::RobotModel& robot, const sim::JointVector& q, double tolerance,
+                        bool& all_within) {
+  ordered_json out = ordered_json::array();
   all_within = true;
   const std::vector<double> value = JointsForCli(q);
   const std::vector<double> lower = JointsForCli(robot.lower_limits());
@@ -69,8 +69,8 @@ json LimitsJson(const sim::RobotModel& robot, const sim::JointVector& q, double 
   return out;
 }
 
-json JointNamesJson() {
-  json names = json::array();
+ordered_json JointNamesJson() {
+  ordered_json names = ordered_json::array();
   for (auto n : sim::kJointNames) names.push_back(std::string(n));
   return names;
 }
@@ -83,7 +83,7 @@ KinematicsReport ForwardKinematics(const LoadedScene& ls, const std::vector<doub
   const sim::JointVector q = JointsFromCli(joints);
 
   bool within = true;
-  json out;
+  ordered_json out;
   out["scene"] = ls.scene->name;
   out["head"] = ls.scene->head.name;
   out["joint_names"] = JointNamesJson();
@@ -113,7 +113,7 @@ KinematicsReport InverseKinematics(const LoadedScene& ls, const std::vector<doub
       sim::SolveToolPose(cell, target, rotator_deg * kDeg, rail_mm, nullptr);
   const sim::IkResult& ik = sol.ik;
 
-  json out;
+  ordered_json out;
   out["scene"] = ls.scene->name;
   out["head"] = ls.scene->head.name;
   out["status"] = std::string(sim::ToString(ik.status));

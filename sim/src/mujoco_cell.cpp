@@ -57,7 +57,7 @@ Eigen::Isometry3d PoseOf(const mjtNum* pos, const mjtNum* mat) {
   return t;
 }
 
-std::string Num(double v) {
+std::string XmlNum(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
@@ -68,10 +68,10 @@ std::string HeadInertialXml(const scene::HeadSpec& head) {
   if (!head.inertial) return {};
   const auto& in = *head.inertial;
   const Eigen::Matrix3d& I = in.inertia_kg_m2;
-  return "<inertial pos=\"" + Num(in.com_m.x()) + " " + Num(in.com_m.y()) + " " +
-         Num(in.com_m.z()) + "\" mass=\"" + Num(in.mass_kg) + "\" fullinertia=\"" + Num(I(0, 0)) +
-         " " + Num(I(1, 1)) + " " + Num(I(2, 2)) + " " + Num(I(0, 1)) + " " + Num(I(0, 2)) + " " +
-         Num(I(1, 2)) + "\"/>";
+  return "<inertial pos=\"" + XmlNum(in.com_m.x()) + " " + XmlNum(in.com_m.y()) + " " +
+         XmlNum(in.com_m.z()) + "\" mass=\"" + XmlNum(in.mass_kg) + "\" fullinertia=\"" +
+         XmlNum(I(0, 0)) + " " + XmlNum(I(1, 1)) + " " + XmlNum(I(2, 2)) + " " + XmlNum(I(0, 1)) +
+         " " + XmlNum(I(0, 2)) + " " + XmlNum(I(1, 2)) + "\"/>";
 }
 
 bool MapNames(MujocoModel& mm, const RobotModel& robot, const std::string& file,
