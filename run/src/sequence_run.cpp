@@ -160,6 +160,7 @@ double JoinSets(const SequenceOptions& options, const CourseEnds& ends, const Me
     const planner::SequenceSolution sol = planner::SolveLocalSearch(p, lo);
     if (!(sol.cost < before)) continue;
     saved += before - sol.cost;
+    o.sets[k].kept_original = o.sets[k + 1].kept_original = false;  // their orders are new
     for (std::size_t i = 0; i < sol.order.size(); ++i) {
       const auto& v = sol.order[i];
       o.after[from + i] = {courses[static_cast<std::size_t>(v.course)], v.reversed};
