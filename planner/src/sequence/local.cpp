@@ -56,8 +56,9 @@
 // a time limit the forward-only phase gets a third of it (then the guarantee holds only when no
 // limit cut either run).
 //
-// Work and memory. Up to 1,024 courses every move cost is tabled once ((2n)^2 doubles, 32 MiB
-// at 1,024; a MoveTable problem brings its own); above, costs are computed when needed.
+// Work and memory. Up to 1,024 courses every move cost is tabled once per call ((2n)^2
+// doubles, 32 MiB at 1,024, shared by both phases and every start; a MoveTable problem brings
+// its own); above, costs are computed when needed.
 // Building the lists is O(n^2); a move is priced in O(1) and applied in O(changed positions)
 // table look-ups plus one add per later position.
 #include <algorithm>
@@ -543,8 +544,15 @@ SequenceSolution Search(const SequenceProblem& p, const LocalSearchOptions& o,
 
 }  // namespace
 
-SequenceSolution SolveLocalSearch(const SequenceProblem& p, const LocalSearchOptions& o) {
+SequenceSolution SolveLocalSearch(const SequenceProblem& given, const LocalSearchOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
+  // Every move cost tabled once, shared by both phases and every start (and thread).
+  SequenceProblem tabled;
+  if (!given.table && given.courses >= 2 && given.courses <= detail::kTableCourses) {
+    tabled = given;
+    tabled.table = detail::TableOf(given);
+  }
+  const SequenceProblem& p = tabled.table ? tabled : given;
   SequenceSolution s;
   if (p.bidirectional && o.initial.empty() && p.courses >= 2) {
     // Dominance: every forward-only order is a bidirectional one; start from the best of them.

@@ -15,15 +15,7 @@ Tour::Tour(const SequenceProblem& p, std::vector<Visit> order) : p_(p), t_(std::
     from_start_.push_back(FromStart(p, NodeVisit(u)));
     to_finish_.push_back(ToFinish(p, NodeVisit(u)));
   }
-  if (p.table) {
-    tab_ = p.table->move.data();
-  } else if (p.courses <= kTableCourses) {
-    table_.resize(stride_ * stride_);
-    for (int a = 0; a < m; ++a) {
-      for (int b = 0; b < m; ++b) table_[a * stride_ + b] = Edge(p, NodeVisit(a), NodeVisit(b));
-    }
-    tab_ = table_.data();
-  }
+  if (p.table) tab_ = p.table->move.data();
   // Blocks: the positions of each group, in the order the tour lays the groups.
   const int n = Size();
   block_lo_.assign(static_cast<std::size_t>(n), 0);
@@ -43,6 +35,20 @@ Tour::Tour(const SequenceProblem& p, std::vector<Visit> order) : p_(p), t_(std::
   cost_ = PathCost(p_, t_);
   touched_lo_ = 0;  // every direction still to choose
   touched_hi_ = n - 1;
+}
+
+std::shared_ptr<const MoveTable> TableOf(const SequenceProblem& p) {
+  auto t = std::make_shared<MoveTable>();
+  const int m = 2 * p.courses;
+  const auto stride = static_cast<std::size_t>(m);
+  t->move.resize(stride * stride);
+  for (int a = 0; a < m; ++a) {
+    t->from_start.push_back(FromStart(p, NodeVisit(a)));
+    t->to_finish.push_back(ToFinish(p, NodeVisit(a)));
+    for (int b = 0; b < m; ++b) t->move[a * stride + b] = Edge(p, NodeVisit(a), NodeVisit(b));
+  }
+  t->start_to_finish = StartToFinish(p);
+  return t;
 }
 
 double Tour::Link(int x, int y) const {

@@ -7,6 +7,7 @@
 // a course out of its block is not allowed.
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "detail.h"
@@ -29,9 +30,12 @@ struct TourMove {
   double delta = 0.0;
 };
 
-/// Up to this many courses the tour keeps every move cost in a table: (2n)^2 doubles, at most
-/// 32 MiB; above, costs are computed when needed (a MoveTable problem always has its table).
+/// Up to this many courses the local search tables every move cost once per call (TableOf):
+/// (2n)^2 doubles, at most 32 MiB, shared by its phases and starts; above, costs are computed
+/// when needed (a MoveTable problem brings its own).
 inline constexpr int kTableCourses = 1024;
+/// Every move cost of p (its norms of points, or its own table) as a MoveTable.
+std::shared_ptr<const MoveTable> TableOf(const SequenceProblem& p);
 
 class Tour {
  public:
@@ -117,9 +121,8 @@ class Tour {
   std::vector<double> bwd_;               ///< bwd_[i]: moves ti -> ... -> t0, each course as laid
   std::vector<double> rev_;  ///< rev_[i]: moves flip(ti) -> ... -> flip(t0) (bidirectional)
   std::vector<Visit> scratch_;
-  std::vector<double> table_;    ///< (2n)^2 move costs between nodes, if n <= kTableCourses
-  const double* tab_ = nullptr;  ///< table_, or the problem's MoveTable; null: computed
-  std::size_t stride_ = 0;       ///< 2n
+  const double* tab_ = nullptr;                 ///< the problem's MoveTable; null: costs computed
+  std::size_t stride_ = 0;                      ///< 2n
   std::vector<double> from_start_, to_finish_;  ///< per node
   double cost_ = 0.0;
   std::int64_t applied_ = 0;             ///< moves applied (every kFullRefresh-th recomputes all)
