@@ -13,7 +13,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -85,9 +84,8 @@ double GapPercent(double value, double reference) {
 }
 
 /// One row: a solve of one instance under one budget (0: the default options).
-void SolveAndPrint(const TsplibOptimum& o, const SequenceProblem& p,
-                   const std::optional<LowerBound>& bound, double budget_s, int jobs,
-                   double& worst_gap) {
+void SolveAndPrint(const TsplibOptimum& o, const SequenceProblem& p, const LowerBound& bound,
+                   double budget_s, int jobs, double& worst_gap) {
   LocalSearchOptions options;
   options.jobs = jobs;
   if (budget_s > 0) {
@@ -101,11 +99,8 @@ void SolveAndPrint(const TsplibOptimum& o, const SequenceProblem& p,
   const std::string budget = BudgetName(budget_s);
   std::printf("| %s | %s | %d | %.0f | %s | %.0f | %.3f |", o.name.c_str(),
               o.symmetric ? "TSP" : "ATSP", p.courses + 1, o.optimum, budget.c_str(), s.cost, gap);
-  if (bound)
-    std::printf(" %.1f | %.3f |", bound->value, GapPercent(s.cost, bound->value));
-  else
-    std::printf("  |  |");
-  std::printf(" %.2f | %s |\n", s.seconds, ToString(s.status));
+  std::printf(" %.1f | %.3f | %.2f | %s |\n", bound.value, GapPercent(s.cost, bound.value),
+              s.seconds, ToString(s.status));
   std::fflush(stdout);
 }
 
@@ -133,7 +128,7 @@ int RunBench(const BenchOptions& bo) {
       return 2;
     }
     const SequenceProblem p = TsplibProblem(*in, false);
-    const std::optional<LowerBound> bound = ComputeLowerBound(p);
+    const LowerBound bound = ComputeLowerBound(p);
     for (std::size_t b = 0; b < budgets.size(); ++b)
       SolveAndPrint(o, p, bound, budgets[b], bo.jobs, worst[b][o.symmetric ? 1 : 0]);
     ++solved[o.symmetric ? 1 : 0];

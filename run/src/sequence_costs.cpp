@@ -179,7 +179,7 @@ std::vector<double> MoveCosts(const CourseEnds& ends,
   if (m == Measure::kTimed) {
     int from = -1;  // home
     for (const auto& v : visits) {
-      const int row = 4 * v.course + (v.reversed ? 2 : 0);
+      const int row = static_cast<int>(StartRowOf(v));
       out.push_back(TimedMoveSeconds(*spec.timed, ends, from, row));
       from = row + 1;
     }
@@ -189,10 +189,9 @@ std::vector<double> MoveCosts(const CourseEnds& ends,
   const planner::SequenceProblem p = MeasureOnlyProblem(spec);
   std::vector<double> here = PointOf(ends.home, m);
   for (const auto& v : visits) {
-    const std::size_t k = 4 * static_cast<std::size_t>(v.course) + (v.reversed ? 2 : 0);
-    const std::vector<double> start = PointOf(ends.ends[k], m);
+    const std::vector<double> start = PointOf(StartOf(ends, v), m);
     out.push_back(planner::MoveCost(p, here.data(), start.data()));
-    here = PointOf(ends.ends[k + 1], m);
+    here = PointOf(EndOf(ends, v), m);
   }
   if (finish) {
     const std::vector<double> home = PointOf(ends.home, m);

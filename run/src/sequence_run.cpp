@@ -76,14 +76,6 @@ planner::LocalSearchOptions LocalOptionsOf(const SequenceOptions& options) {
   return lo;
 }
 
-// Where visit i of `order` starts and ends (its lay-up's first and last pose).
-const EndPoint& StartOfVisit(const CourseEnds& ends, const CourseVisit& v) {
-  return ends.ends[4 * static_cast<std::size_t>(v.course) + (v.reversed ? 2 : 0)];
-}
-const EndPoint& EndOfVisit(const CourseEnds& ends, const CourseVisit& v) {
-  return ends.ends[4 * static_cast<std::size_t>(v.course) + (v.reversed ? 3 : 1)];
-}
-
 // Orders every set in turn, each from where the previous one ended; a set whose solved order
 // costs more than the programme's keeps the programme's (seed 004, requirement 4).
 // `progress`: courses ordered so far, of the programme's.
@@ -122,7 +114,7 @@ void SolveSequenceSets(const SequenceOptions& options, const SequenceAnalysis& a
     }
     for (const auto& v : sol.order)
       o.after.push_back({courses[static_cast<std::size_t>(v.course)], v.reversed});
-    start = &EndOfVisit(an.ends, o.after.back());
+    start = &EndOf(an.ends, o.after.back());
     if (progress) progress(static_cast<double>(o.after.size()), total_courses);
   }
 }
@@ -146,8 +138,8 @@ double JoinSets(const SequenceOptions& options, const CourseEnds& ends, const Me
     const std::size_t from = at[k], to = at[k + 2];
     std::vector<int> courses;
     for (std::size_t i = from; i < to; ++i) courses.push_back(o.after[i].course);
-    const EndPoint& start = from == 0 ? ends.home : EndOfVisit(ends, o.after[from - 1]);
-    const EndPoint* finish = to < o.after.size() ? &StartOfVisit(ends, o.after[to])
+    const EndPoint& start = from == 0 ? ends.home : EndOf(ends, o.after[from - 1]);
+    const EndPoint* finish = to < o.after.size() ? &StartOf(ends, o.after[to])
                              : o.return_home     ? &ends.home
                                                  : nullptr;
     auto p = SetProblem(ends, courses, spec, o.measure, o.bidirectional, start, finish);
@@ -222,8 +214,7 @@ void BoundSets(const SequenceOptions& options, const CourseEnds& ends, const Mea
     set.gap = GapTo(set.cost, set.optimum ? *set.optimum : b.value);
     if (!orders[k].empty()) {
       const planner::Visit& v = orders[k].back();
-      const auto course = static_cast<std::size_t>(set.courses[static_cast<std::size_t>(v.course)]);
-      start = &ends.ends[4 * course + (v.reversed ? 3 : 1)];
+      start = &EndOf(ends, {set.courses[static_cast<std::size_t>(v.course)], v.reversed});
     }
   }
 }

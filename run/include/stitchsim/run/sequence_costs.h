@@ -82,6 +82,19 @@ planner::SequenceProblem SetProblem(const CourseEnds& ends, const std::vector<in
                                     const MeasureSpec& spec, Measure m, bool bidirectional,
                                     const EndPoint& start, const EndPoint* finish);
 
+/// The row of CourseEnds::ends (and of planner::SequenceProblem::points) where visit v's
+/// lay-up starts; it ends on the next row.
+inline std::size_t StartRowOf(const program::CourseVisit& v) {
+  return 4 * static_cast<std::size_t>(v.course) + (v.reversed ? 2 : 0);
+}
+/// Where visit v's lay-up starts and where it ends.
+inline const EndPoint& StartOf(const CourseEnds& ends, const program::CourseVisit& v) {
+  return ends.ends[StartRowOf(v)];
+}
+inline const EndPoint& EndOf(const CourseEnds& ends, const program::CourseVisit& v) {
+  return ends.ends[StartRowOf(v) + 1];
+}
+
 /// The point of an end in measure m.
 std::vector<double> PointOf(const EndPoint& e, Measure m);
 
