@@ -26,6 +26,9 @@ class SequenceRunTest : public ::testing::Test {
     test::PlanSeqPlate({"pad_0_left", "pad_0_right", "pad_0_mid"}, *dir_ / "pads.nc");
     // A pad-up on the base ply: two sets, the pad's after the base's.
     test::PlanSeqPlate({"base_0", "pad_0_mid"}, *dir_ / "base_pad.nc");
+    // A pad-up first, the base after it: at course level the base's courses clear of the pad
+    // may join the pad's set.
+    test::PlanSeqPlate({"pad_0_left", "base_0"}, *dir_ / "pad_base.nc");
   }
   static void TearDownTestSuite() {
     fs::remove_all(*dir_);
@@ -249,7 +252,7 @@ TEST_F(SequenceRunTest, ThreadsDoNotChangeTheOrderAndJoinsNeverCostMore) {
 // --course-level allows every ply-level order: its answer is never dearer than the ply-level
 // run's, and the report names whose answer it took.
 TEST_F(SequenceRunTest, CourseLevelIsNeverDearerThanPlyLevel) {
-  SequenceOptions o = test::SeqPlateOptions(dir_path() / "base_pad.nc");
+  SequenceOptions o = test::SeqPlateOptions(dir_path() / "pad_base.nc");
   o.bidirectional = true;
   o.time_limit_s = 0;
   const SequenceInputs in = test::LoadOrFail(o);
@@ -259,7 +262,9 @@ TEST_F(SequenceRunTest, CourseLevelIsNeverDearerThanPlyLevel) {
   ASSERT_EQ(ply.status, SequenceStatus::kOk);
   ASSERT_EQ(course.status, SequenceStatus::kOk);
   EXPECT_EQ(ply.outcome.precedence, "ply");
-  EXPECT_TRUE(course.outcome.precedence == "ply" || course.outcome.precedence == "course");
+  // Here the course-level sets alone would cost more (8.47 against 8.08 axes, measured with
+  // the comparison planted the wrong way round): the ply-level answer is taken.
+  EXPECT_EQ(course.outcome.precedence, "ply");
   EXPECT_LE(course.outcome.offpart_after[0], ply.outcome.offpart_after[0] * (1 + 1e-12));
 }
 
