@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 #include <numeric>
 #include <ostream>
@@ -68,11 +69,27 @@ double TotalCost(const CourseEnds& ends, const std::vector<CourseVisit>& visits,
 }
 
 // The local search's options of a run: its time limit and threads.
-planner::LocalSearchOptions LocalOptionsOf(const SequenceOptions& options) {
+// A run of more than kLargeRun courses (many sets) gives each set's search, and each join's,
+// kLargeRunStarts starts and a stagnation cap of kLargeRunRounds / courses rounds, at least
+// kMinRounds: the whole run's work grows like one large set's, not like the sets' count times
+// a small set's (a small set alone gets 8 starts of 5,000 rounds). Rounds, not seconds: the
+// answer stays the same on any machine.
+constexpr std::size_t kLargeRun = 1000;
+constexpr int kLargeRunStarts = 2;
+constexpr std::int64_t kLargeRunRounds = 1'000'000;
+constexpr std::int64_t kMinRounds = 100;
+
+// `run_courses`: the courses of the whole run.
+planner::LocalSearchOptions LocalOptionsOf(const SequenceOptions& options,
+                                           std::size_t run_courses) {
   planner::LocalSearchOptions lo;
   lo.time_limit_s = options.time_limit_s;
   lo.jobs = options.jobs > 0 ? options.jobs
                              : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (run_courses > kLargeRun) {
+    lo.starts = kLargeRunStarts;
+    lo.stagnation = std::max(kMinRounds, kLargeRunRounds / static_cast<std::int64_t>(run_courses));
+  }
   return lo;
 }
 
@@ -100,7 +117,7 @@ void SolveSequenceSets(const SequenceOptions& options, const SequenceAnalysis& a
     } else if (options.solver == SequenceSolver::kSeed) {
       sol = planner::SolveSeedMethod(p);
     } else {
-      sol = planner::SolveLocalSearch(p, LocalOptionsOf(options));
+      sol = planner::SolveLocalSearch(p, LocalOptionsOf(options, o.before.size()));
     }
     SetOutcome& set = o.sets[k];
     set.solver = sol.solver;
@@ -143,7 +160,7 @@ double JoinSets(const SequenceOptions& options, const CourseEnds& ends, const Me
                              : o.return_home     ? &ends.home
                                                  : nullptr;
     auto p = SetProblem(ends, courses, spec, o.measure, o.bidirectional, start, finish);
-    planner::LocalSearchOptions lo = LocalOptionsOf(options);
+    planner::LocalSearchOptions lo = LocalOptionsOf(options, o.before.size());
     for (std::size_t i = from; i < to; ++i) {
       p.group.push_back(i < at[k + 1] ? 0 : 1);
       lo.initial.push_back({static_cast<int>(i - from), o.after[i].reversed});
@@ -358,7 +375,7 @@ SequenceRun RunSequence(const SequenceInputs& in, const SequenceOptions& options
   // The timed measure's tables are computed on --jobs threads (the same whatever their number).
   auto timed = std::make_shared<TimedModel>(
       TimedModelOf(*in.loaded.robot, scene, program::Dialect::Default()));
-  timed->threads = LocalOptionsOf(options).jobs;
+  timed->threads = LocalOptionsOf(options, 0).jobs;
   specs[static_cast<std::size_t>(Measure::kTimed)].timed = timed;
   const MeasureSpec& spec = specs[static_cast<std::size_t>(o.measure)];
   if (options.order_file.empty()) {

@@ -158,13 +158,19 @@ double Tour::BestDirections(int lo, int hi, std::vector<Visit>& out) const {
 void Tour::Turn(int lo, const std::vector<Visit>& turned, double delta) {
   std::copy(turned.begin(), turned.end(), t_.begin() + lo);
   cost_ += delta;
+  // Not touched for the direction pass (it chose these), but changed since Mark.
+  round_lo_ = std::min(round_lo_, lo);
+  round_hi_ = std::max(round_hi_, lo + static_cast<int>(turned.size()) - 1);
   Refresh(lo, lo + static_cast<int>(turned.size()) - 1);
 }
 
 void Tour::Restore(const std::vector<Visit>& order, double cost) {
-  t_ = order;
   cost_ = cost;
-  Refresh(0, Size() - 1);
+  if (round_lo_ <= round_hi_) {
+    std::copy(order.begin() + round_lo_, order.begin() + round_hi_ + 1, t_.begin() + round_lo_);
+    Refresh(round_lo_, round_hi_);
+  }
+  Mark();
   ClearTouched();  // a saved tour: its directions were chosen when it was saved
 }
 

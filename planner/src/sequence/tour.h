@@ -83,7 +83,13 @@ class Tour {
     touched_lo_ = Size();
     touched_hi_ = -1;
   }
-  /// Replaces the tour (a saved copy) and its cost.
+  /// Starts a round: Restore brings back the tour as it is now (the caller keeps a copy).
+  void Mark() {
+    round_lo_ = Size();
+    round_hi_ = -1;
+  }
+  /// Replaces the tour by `order`, the copy saved at Mark(), and its cost: only the positions
+  /// changed since then are recomputed.
   void Restore(const std::vector<Visit>& order, double cost);
 
  private:
@@ -127,9 +133,12 @@ class Tour {
   double cost_ = 0.0;
   std::int64_t applied_ = 0;             ///< moves applied (every kFullRefresh-th recomputes all)
   int touched_lo_ = 0, touched_hi_ = 0;  ///< positions changed since ClearTouched
+  int round_lo_ = 0, round_hi_ = -1;     ///< positions changed since Mark
   void TouchRange(int lo, int hi) {
     touched_lo_ = std::min(touched_lo_, lo);
     touched_hi_ = std::max(touched_hi_, hi);
+    round_lo_ = std::min(round_lo_, lo);
+    round_hi_ = std::max(round_hi_, hi);
   }
   static constexpr std::int64_t kFullRefresh = 1024;
 };
