@@ -197,13 +197,13 @@ TEST(RuleRegistry, TwoContextsListedByHand) {
   afp.loaded.scene->head.inertial = FiveKilograms();
   afp.declared = 40;  // no program.stitch_count for a head that does not stitch
   const RuleContext actx = afp.Rules();
-  EXPECT_EQ(
-      IdsOf(MakeRules(actx)),
-      (std::vector<std::string>{
-          "afp.steering_radius", "afp.gap", "afp.overlap", "afp.compaction", "afp.coverage",
-          "kin.reach", "kin.joint_limit", "kin.singularity", "kin.config_flip", "kin.joint_speed",
-          "kin.acceleration", "kin.torque", "kin.payload", "program.sync", "program.line_sampling",
-          "collision.head_mold", "collision.robot_cell", "collision.clearance"}));
+  EXPECT_EQ(IdsOf(MakeRules(actx)),
+            (std::vector<std::string>{
+                "afp.steering_radius", "afp.gap", "afp.overlap", "afp.compaction", "afp.coverage",
+                "afp.fiber_angle", "kin.reach", "kin.joint_limit", "kin.singularity",
+                "kin.config_flip", "kin.joint_speed", "kin.acceleration", "kin.torque",
+                "kin.payload", "program.sync", "program.line_sampling", "collision.head_mold",
+                "collision.robot_cell", "collision.clearance"}));
   EXPECT_EQ(IdsOf(SkippedRules(actx)), (std::vector<std::string>{"afp.min_tow_length"}));
   // With a minimum tow length given, it runs after afp.coverage.
   afp.loaded.scene->limits.Set(scene::LimitKey::kAfpMinTowLengthMm, 100.0);

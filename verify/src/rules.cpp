@@ -19,6 +19,7 @@
   X(AfpCompactionRuleEntry)        \
   X(AfpCoverageRuleEntry)          \
   X(AfpMinTowLengthRuleEntry)      \
+  X(AfpFiberAngleRuleEntry)        \
   X(ReachRuleEntry)                \
   X(JointLimitRuleEntry)           \
   X(SingularityRuleEntry)          \

@@ -1,0 +1,118 @@
+// afp.fiber_angle: the direction every tow is laid in against its ply's design fibre
+// direction (docs/report-format.md, the afp.* rules; issue 29). The design direction at a
+// point of the surface is the ply's rosette reference (PlySpec::direction) projected onto the
+// tangent plane there along the ply's projection direction (PlySpec::projection; the
+// projected-rosette convention of fibre-placement CAM), turned by the ply angle about the
+// surface normal (right-handed about the normal that points to the head, as the ply planner
+// turns it). The laid direction is the tow's centre line between consecutive sampled poses of
+// a line (at most half a tow width apart), laid into the tangent plane at their midpoint.
+// Fibres are lines: the deviation is the angle between the two directions taken without sign,
+// 0 to 90 deg. One figure per laying line, its worst tow; lines of plies the scene does not
+// define are not judged.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "afp_laid.h"
+#include "detail/rule_registry.h"
+#include "stitchsim/common/units.h"
+
+namespace stitchsim::verify {
+namespace {
+
+using detail::LaidLine;
+
+/// The design fibre direction of `ply` in the tangent plane with unit normal `n`, or nullopt
+/// where the reference does not project (its direction along the projection, or the
+/// projection in the tangent plane).
+std::optional<Eigen::Vector3d> DesignDirection(const scene::PlySpec& ply,
+                                               const Eigen::Vector3d& n) {
+  const double along = ply.projection.dot(n);
+  if (std::abs(along) < 1e-9) return std::nullopt;
+  // Oblique projection along `projection` onto the tangent plane.
+  Eigen::Vector3d d0 = ply.direction - (ply.direction.dot(n) / along) * ply.projection;
+  const double len = d0.norm();
+  if (len < 1e-9) return std::nullopt;
+  d0 /= len;
+  return std::cos(ply.angle_rad) * d0 + std::sin(ply.angle_rad) * n.cross(d0);
+}
+
+class FiberAngleRule final : public Rule {
+ public:
+  FiberAngleRule(const RuleContext& ctx, std::shared_ptr<detail::LaidTows> laid)
+      : Rule("afp.fiber_angle",
+             "angle between every laid tow's centre line and its ply's design fibre direction "
+             "(the rosette reference projected onto the surface, turned by the ply angle)",
+             "deg"),
+        laid_(std::move(laid)),
+        plies_(&ctx.scene->plies) {
+    summary_.error_limit = ctx.scene->limits.Value(scene::LimitKey::kAfpFiberAngleMaxDeg);
+    for (int t = 1; t <= laid_->Layout().tows; ++t) {
+      AddSubject("tow " + std::to_string(t), summary_.error_limit, std::nullopt);
+    }
+  }
+
+  void OnLine(const trace::LineRecord& record) override {
+    const LaidLine* line = laid_->Sample(record);
+    if (line == nullptr || line->ply < 1 || line->ply > static_cast<int>(plies_->size())) return;
+    const scene::PlySpec& ply = (*plies_)[static_cast<std::size_t>(line->ply) - 1];
+    const geom::Surface& surface = laid_->Surface();
+    double worst = -1.0;
+    int worst_tow = 0;
+    for (int t = 1; t <= laid_->Layout().tows; ++t) {
+      if (!detail::TowLaid(line->tows, t)) continue;
+      double tow_worst = -1.0;
+      for (std::size_t k = 1; k < line->poses.size(); ++k) {
+        const auto& a = line->poses[k - 1].cross;
+        const auto& b = line->poses[k].cross;
+        if (!a.ok || !b.ok) continue;
+        const Eigen::Vector2d ua = detail::TowCentreUv(a, t), ub = detail::TowCentreUv(b, t);
+        const Eigen::Vector3d n = surface.Normal(0.5 * (ua + ub)).normalized();
+        Eigen::Vector3d laid = surface.Point(ub) - surface.Point(ua);
+        laid -= laid.dot(n) * n;
+        if (laid.norm() < 1e-9) continue;
+        const std::optional<Eigen::Vector3d> design = DesignDirection(ply, n);
+        if (!design) continue;
+        const double c = std::clamp(std::abs(laid.normalized().dot(*design)), 0.0, 1.0);
+        tow_worst = std::max(tow_worst, RadToDeg(std::acos(c)));
+      }
+      if (tow_worst < 0.0) continue;
+      ObserveSubject(static_cast<std::size_t>(t) - 1, tow_worst, line->source_line, 0);
+      if (tow_worst > worst) {
+        worst = tow_worst;
+        worst_tow = t;
+      }
+    }
+    if (worst < 0.0) return;
+    CheckUpper(
+        worst, line->source_line, 0, "tow " + std::to_string(worst_tow),
+        [&] {
+          char buf[160];
+          std::snprintf(buf, sizeof(buf),
+                        "ply %d course %d tow %d laid off its design fibre direction (ply angle "
+                        "%.4g deg) by",
+                        line->ply, line->course, worst_tow, RadToDeg(ply.angle_rad));
+          return std::string(buf);
+        },
+        nullptr);
+  }
+
+ private:
+  std::shared_ptr<detail::LaidTows> laid_;
+  const std::vector<scene::PlySpec>* plies_;
+};
+
+}  // namespace
+
+RuleEntry AfpFiberAngleRuleEntry() {
+  return {"afp.fiber_angle", CloseUpFamily::kNone, detail::RunsWhenLaying,
+          [](const RuleContext& ctx, detail::RuleMaking& making) -> std::unique_ptr<Rule> {
+            return std::make_unique<FiberAngleRule>(ctx, making.Laid(ctx));
+          }};
+}
+
+}  // namespace stitchsim::verify
