@@ -106,6 +106,9 @@ constexpr LimitSpec kTable[] = {
     {K::kAfpMinTowLengthMm, "afp.min_tow_length", "min_mm", U::kMm, std::nullopt, false,
      "shortest tow piece the head can lay, from its add to its cut: the distance from the "
      "cutter to the compaction roller (none given: the rule is skipped)"},
+    {K::kAfpRestartDistanceMm, "afp.restart_distance", "min_mm", U::kMm, std::nullopt, false,
+     "shortest distance the head travels along a tow's centre line, within a course, between "
+     "cutting the tow and adding it again (none given: the rule is skipped)"},
     {K::kTrackingErrorMm, "dyn.tracking", "error_mm", U::kMm, 2.0, false,
      "tool point lagging its command in a dynamic run (`verify --dynamics`), error"},
     {K::kTrackingWarningMm, "dyn.tracking", "warning_mm", U::kMm, 0.5, false,
