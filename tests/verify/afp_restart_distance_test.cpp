@@ -4,8 +4,8 @@
 // between lay the other tows or none; on a convex cylinder of R 400, a course round the
 // circumference with tow 3 cut over an angle of 40 / 400 rad is R delta_theta = 40 mm from its
 // cut along the arc, not the 2 R sin(delta_theta / 2) of the chord (the tool poses built from
-// the closed form, not the surface model). A tow added again in another course is no restart,
-// and without a minimum the rule is skipped.
+// the closed form, not the surface model). A rapid inside the course is bridged by its chord; a
+// tow added again in another course is no restart, and without a minimum the rule is skipped.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -76,6 +76,26 @@ TEST(AfpRestartDistance, ATowAddedInAnotherCourseIsNoRestart) {
   ASSERT_NE(rule, nullptr);
   EXPECT_EQ(rule->checked, 0);
   EXPECT_EQ(rule->errors, 0);
+}
+
+// A rapid inside the course (the head lifted from x = 100 to 140) cuts every tow and is
+// bridged by the chord, the distance on a plane: it does not start the course afresh.
+TEST(AfpRestartDistance, ARapidInsideTheCourseCutsEveryTowAndIsBridged) {
+  auto scene = AfpScene(geom::MakePlane(4000, 4000));
+  scene->limits.Set(scene::LimitKey::kAfpRestartDistanceMm, 50.0);
+  const Eigen::Vector2d dir(1, 0);
+  auto at = [&](double x) { return ToolAt(*scene->surface, Eigen::Vector2d(x, 0), dir, 5.0); };
+  auto on = [&](double x) { return ToolAt(*scene->surface, Eigen::Vector2d(x, 0), dir); };
+  trace::LineRecord rapid = LayLine(11, at(100), at(140), kAll);
+  rapid.rapid = true;
+  const Report report = RunLines(
+      *scene, {LayLine(10, on(0), on(100), kAll), rapid, LayLine(12, on(140), on(300), kAll)});
+  const RuleSummary* rule = RuleOf(report, kId);
+  ASSERT_NE(rule, nullptr);
+  EXPECT_EQ(rule->checked, 16);
+  ASSERT_EQ(rule->findings.size(), 1u);
+  EXPECT_EQ(rule->findings[0].line, 12);
+  EXPECT_NEAR(rule->findings[0].value, 140.0 - 100.0, 1e-6);
 }
 
 TEST(AfpRestartDistance, OnACylinderTheDistanceIsItsArcRadiusTimesAngle) {
