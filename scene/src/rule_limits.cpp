@@ -106,6 +106,9 @@ constexpr LimitSpec kTable[] = {
     {K::kAfpMinTowLengthMm, "afp.min_tow_length", "min_mm", U::kMm, std::nullopt, false,
      "shortest tow piece the head can lay, from its add to its cut: the distance from the "
      "cutter to the compaction roller (none given: the rule is skipped)"},
+    {K::kAfpRestartDistanceMm, "afp.restart_distance", "min_mm", U::kMm, std::nullopt, false,
+     "shortest distance the head travels along a tow's centre line, within a course, between "
+     "cutting the tow and adding it again (none given: the rule is skipped)"},
     {K::kAfpFiberAngleMaxDeg, "afp.fiber_angle", "max_deg", U::kDeg, 5.0, false,
      "laid tow direction off its ply's design fibre direction (rosette projected onto the "
      "surface, turned by the ply angle); 5 deg an assumption, designers hold 3 to 5"},

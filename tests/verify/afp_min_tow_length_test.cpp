@@ -16,12 +16,13 @@ namespace {
 
 using testing::AfpScene;
 using testing::LayLine;
+using testing::RoundCylinder;
 using testing::RuleOf;
 using testing::RunLines;
 using testing::ToolAt;
 
-constexpr std::uint64_t kAll = 0xFFFF;
-constexpr std::uint64_t kAllButTow5 = 0xFFFF & ~(1ULL << 4);
+constexpr std::uint64_t kAll = testing::kAllTows;
+constexpr std::uint64_t kAllButTow5 = testing::AllTowsBut(5);
 
 // Four lines of course 1 along x: 0..100 without tow 5, two lines of len / 2 with it (added
 // on line 11, cut after line 12), then 200 mm more without it. Lines 10 to 13.
@@ -55,19 +56,6 @@ TEST(AfpMinTowLength, ATowAddedForSixtyMillimetresFiresOnTheLineThatAddsIt) {
 
   const Report longer = RunLines(*scene, PlaneCourse(*scene->surface, 110.0));
   EXPECT_EQ(RuleOf(longer, "afp.min_tow_length")->errors, 0);
-}
-
-// The tool at arc angle theta round a convex cylinder of radius r (axis along x at z = -r),
-// travelling round it: built from the closed form.
-Eigen::Isometry3d RoundCylinder(double r, double theta) {
-  const Eigen::Vector3d normal(0, std::sin(theta), std::cos(theta));
-  const Eigen::Vector3d travel(0, std::cos(theta), -std::sin(theta));
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.linear().col(0) = travel.cross(normal);
-  t.linear().col(1) = travel;
-  t.linear().col(2) = normal;
-  t.translation() = Eigen::Vector3d(0, r * std::sin(theta), r * std::cos(theta) - r);
-  return t;
 }
 
 TEST(AfpMinTowLength, OnACylinderAPieceIsItsArcRadiusTimesAngle) {

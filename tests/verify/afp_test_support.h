@@ -4,6 +4,8 @@
 // verifier run over them (no simulator: verify reads only the trace).
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,6 +18,10 @@
 namespace stitchsim::verify::testing {
 
 inline constexpr double kTowWidth = 6.35;
+/// Every tow of the default 16-tow head, as a line's tow mask.
+inline constexpr std::uint64_t kAllTows = 0xFFFF;
+/// Every tow of the default head but `tow` (1-based).
+inline constexpr std::uint64_t AllTowsBut(int tow) { return kAllTows & ~(1ULL << (tow - 1)); }
 
 inline std::unique_ptr<scene::Scene> AfpScene(std::unique_ptr<geom::Surface> surface) {
   auto s = std::make_unique<scene::Scene>();
@@ -37,6 +43,19 @@ inline Eigen::Isometry3d ToolAt(const geom::Surface& s, const Eigen::Vector2d& u
   t.linear().col(1) = y;
   t.linear().col(2) = z;
   t.translation() = s.Point(uv) + lift_mm * z;
+  return t;
+}
+
+/// The tool at arc angle `theta` (rad) round a convex cylinder of radius `r` (mm; axis along
+/// x at z = -r), travelling round it: built from the closed form, not the surface model.
+inline Eigen::Isometry3d RoundCylinder(double r, double theta) {
+  const Eigen::Vector3d normal(0, std::sin(theta), std::cos(theta));
+  const Eigen::Vector3d travel(0, std::cos(theta), -std::sin(theta));
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear().col(0) = travel.cross(normal);
+  t.linear().col(1) = travel;
+  t.linear().col(2) = normal;
+  t.translation() = Eigen::Vector3d(0, r * std::sin(theta), r * std::cos(theta) - r);
   return t;
 }
 

@@ -155,6 +155,10 @@ TEST(RuleRegistry, MadeAndSkippedRulesAreTheApplyingOnesOnceEachInEveryContext) 
         } else if (s.id == "afp.min_tow_length") {
           EXPECT_EQ(s.reason,
                     "no minimum tow length given (limits: afp.min_tow_length: {min_mm: ...})");
+        } else if (s.id == "afp.restart_distance") {
+          EXPECT_EQ(s.reason,
+                    "no minimum restart distance given (limits: afp.restart_distance: {min_mm: "
+                    "...})");
         } else if (s.id == "kin.acceleration" || s.id == "kin.torque") {
           EXPECT_FALSE(c.cell.timed);
           EXPECT_EQ(s.reason, "the trace has no timed trajectory");
@@ -204,13 +208,17 @@ TEST(RuleRegistry, TwoContextsListedByHand) {
                 "kin.config_flip", "kin.joint_speed", "kin.acceleration", "kin.torque",
                 "kin.payload", "program.sync", "program.line_sampling", "collision.head_mold",
                 "collision.robot_cell", "collision.clearance"}));
-  EXPECT_EQ(IdsOf(SkippedRules(actx)), (std::vector<std::string>{"afp.min_tow_length"}));
-  // With a minimum tow length given, it runs after afp.coverage.
+  EXPECT_EQ(IdsOf(SkippedRules(actx)),
+            (std::vector<std::string>{"afp.min_tow_length", "afp.restart_distance"}));
+  // With a minimum tow length and restart distance given, they run after afp.coverage.
   afp.loaded.scene->limits.Set(scene::LimitKey::kAfpMinTowLengthMm, 100.0);
+  afp.loaded.scene->limits.Set(scene::LimitKey::kAfpRestartDistanceMm, 80.0);
   const std::vector<std::string> with_minimum = IdsOf(MakeRules(afp.Rules()));
-  ASSERT_GE(with_minimum.size(), 6u);
+  ASSERT_GE(with_minimum.size(), 8u);
   EXPECT_EQ(with_minimum[4], "afp.coverage");
   EXPECT_EQ(with_minimum[5], "afp.min_tow_length");
+  EXPECT_EQ(with_minimum[6], "afp.restart_distance");
+  EXPECT_EQ(with_minimum[7], "afp.fiber_angle");
   EXPECT_TRUE(SkippedRules(afp.Rules()).empty());
 }
 

@@ -110,9 +110,7 @@ class FiberAngleRule final : public Rule {
 
 RuleEntry AfpFiberAngleRuleEntry() {
   return {"afp.fiber_angle", CloseUpFamily::kNone, detail::RunsWhenLaying,
-          [](const RuleContext& ctx, detail::RuleMaking& making) -> std::unique_ptr<Rule> {
-            return std::make_unique<FiberAngleRule>(ctx, making.Laid(ctx));
-          }};
+          detail::MakeLaying<FiberAngleRule>};
 }
 
 }  // namespace stitchsim::verify

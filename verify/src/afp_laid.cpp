@@ -39,30 +39,41 @@ const LaidLine* LaidTows::Sample(const trace::LineRecord& line) {
     return nullptr;
   }
   if (cached_.course != line.course || cached_.ply != line.ply) have_hint_ = false;
+  SampleInto(line, cached_, have_hint_, hint_uv_);
+  return &cached_;
+}
+
+void LaidTows::SamplePath(const trace::LineRecord& line, LaidLine& out) const {
+  bool have_hint = false;
+  Eigen::Vector2d hint = Eigen::Vector2d::Zero();
+  SampleInto(line, out, have_hint, hint);
+}
+
+void LaidTows::SampleInto(const trace::LineRecord& line, LaidLine& out, bool& have_hint,
+                          Eigen::Vector2d& hint_uv) const {
   const std::uint64_t head_tows = process::AllTows(layout_);
-  cached_.source_line = line.source_line;
-  cached_.ply = line.ply;
-  cached_.course = line.course;
-  cached_.tows = line.tows & head_tows;
+  out.source_line = line.source_line;
+  out.ply = line.ply;
+  out.course = line.course;
+  out.tows = line.tows & head_tows;
   // M62 P0 sets every bit (the modal state does not know the head): all bits beyond the
   // head's tows set is "every tow", not a mistake.
   const std::uint64_t beyond = line.tows & ~head_tows;
-  cached_.extra_tows = beyond == ~head_tows ? 0 : beyond;
-  cached_.poses.clear();
+  out.extra_tows = beyond == ~head_tows ? 0 : beyond;
+  out.poses.clear();
   const double length = (line.to.translation() - line.from.translation()).norm();
   const int steps =
       std::clamp(static_cast<int>(std::ceil(length / spacing_mm_)), 1, kMaxPosesPerLine - 1);
-  cached_.poses.reserve(static_cast<std::size_t>(steps) + 1);
+  out.poses.reserve(static_cast<std::size_t>(steps) + 1);
   for (int i = 0; i <= steps; ++i) {
     LaidPose p;
     p.fraction = static_cast<double>(i) / steps;
     p.tool = process::InterpolatePose(line.from, line.to, p.fraction);
-    p.cross = process::TowsAt(*surface_, p.tool, layout_, have_hint_ ? &hint_uv_ : nullptr);
-    have_hint_ = p.cross.ok;
-    if (p.cross.ok) hint_uv_ = p.cross.centre_uv;
-    cached_.poses.push_back(std::move(p));
+    p.cross = process::TowsAt(*surface_, p.tool, layout_, have_hint ? &hint_uv : nullptr);
+    have_hint = p.cross.ok;
+    if (p.cross.ok) hint_uv = p.cross.centre_uv;
+    out.poses.push_back(std::move(p));
   }
-  return &cached_;
 }
 
 std::shared_ptr<LaidTows> MakeLaidTows(const RuleContext& ctx) {

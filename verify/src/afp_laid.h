@@ -52,11 +52,18 @@ class LaidTows {
   /// The sampled line when `line` lays material, else nullptr (and the pose chain resets).
   /// Asking again for the same line record returns the same sampling.
   const LaidLine* Sample(const trace::LineRecord& line);
+  /// Samples `line`'s tool path as Sample does (poses at most w / 2 apart, the tow
+  /// boundaries at each), whether or not it lays, into `out`; the held line is untouched.
+  /// For rules that follow the path between laying lines (afp.restart_distance).
+  void SamplePath(const trace::LineRecord& line, LaidLine& out) const;
   const process::TowLayout& Layout() const { return layout_; }
   const geom::Surface& Surface() const { return *surface_; }
 
  private:
   bool SameAsCached(const trace::LineRecord& line) const;
+  // Fills `out` from `line`; `have_hint` / `hint_uv`: the previous pose's foot, carried on.
+  void SampleInto(const trace::LineRecord& line, LaidLine& out, bool& have_hint,
+                  Eigen::Vector2d& hint_uv) const;
 
   const geom::Surface* surface_;
   process::TowLayout layout_;
@@ -86,7 +93,9 @@ class ThinnedPoints {
 struct TowShortfall {
   double value = 0.0;  ///< the rule's unit
   int tow = 0;         ///< 1-based
-  int other_line = 0;  ///< a second line the finding names (afp.min_tow_length: the cut)
+  /// A second line the finding names (afp.min_tow_length, afp.restart_distance: the last line
+  /// that laid the tow before its cut).
+  int other_line = 0;
 };
 
 /// Keeps `s` for `line` unless a smaller value is kept there already.

@@ -132,16 +132,11 @@ class MinTowLengthRule final : public Rule {
 RuleEntry AfpMinTowLengthRuleEntry() {
   return {"afp.min_tow_length", CloseUpFamily::kNone,
           [](const RuleContext& ctx) {
-            if (ctx.scene->head.IsStitching()) return RulePresence::Absent();
-            if (!ctx.scene->limits.Get(scene::LimitKey::kAfpMinTowLengthMm)) {
-              return RulePresence::Skipped(
-                  "no minimum tow length given (limits: afp.min_tow_length: {min_mm: ...})");
-            }
-            return RulePresence::Runs();
+            return detail::RunsWhenLayingWithLimit(
+                ctx, scene::LimitKey::kAfpMinTowLengthMm,
+                "no minimum tow length given (limits: afp.min_tow_length: {min_mm: ...})");
           },
-          [](const RuleContext& ctx, detail::RuleMaking& making) -> std::unique_ptr<Rule> {
-            return std::make_unique<MinTowLengthRule>(ctx, making.Laid(ctx));
-          }};
+          detail::MakeLaying<MinTowLengthRule>};
 }
 
 }  // namespace stitchsim::verify

@@ -19,6 +19,7 @@
   X(AfpCompactionRuleEntry)        \
   X(AfpCoverageRuleEntry)          \
   X(AfpMinTowLengthRuleEntry)      \
+  X(AfpRestartDistanceRuleEntry)   \
   X(AfpFiberAngleRuleEntry)        \
   X(ReachRuleEntry)                \
   X(JointLimitRuleEntry)           \
@@ -85,6 +86,13 @@ RulePresence RunsWhenStitching(const RuleContext& ctx) {
 }
 RulePresence RunsWhenLaying(const RuleContext& ctx) {
   return RulePresence::RunsIf(!ctx.scene->head.IsStitching());
+}
+
+RulePresence RunsWhenLayingWithLimit(const RuleContext& ctx, scene::LimitKey key,
+                                     const char* missing) {
+  if (ctx.scene->head.IsStitching()) return RulePresence::Absent();
+  if (!ctx.scene->limits.Get(key)) return RulePresence::Skipped(missing);
+  return RulePresence::Runs();
 }
 
 }  // namespace detail

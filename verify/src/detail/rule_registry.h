@@ -5,6 +5,7 @@
 #include <memory>
 #include <type_traits>
 
+#include "stitchsim/scene/rule_limits.h"
 #include "stitchsim/verify/rule_registry.h"
 
 namespace stitchsim::verify::detail {
@@ -35,5 +36,15 @@ RulePresence RunsAlways(const RuleContext& ctx);
 RulePresence RunsWhenStitching(const RuleContext& ctx);
 /// Runs with an AFP head, absent with a stitching head.
 RulePresence RunsWhenLaying(const RuleContext& ctx);
+/// Runs with an AFP head when the scene gives limit `key`; skipped with `missing` as the
+/// reason when it does not; absent with a stitching head.
+RulePresence RunsWhenLayingWithLimit(const RuleContext& ctx, scene::LimitKey key,
+                                     const char* missing);
+
+/// The factory of an afp.* rule constructed from the context and the shared sampler.
+template <typename R>
+std::unique_ptr<Rule> MakeLaying(const RuleContext& ctx, RuleMaking& making) {
+  return std::make_unique<R>(ctx, making.Laid(ctx));
+}
 
 }  // namespace stitchsim::verify::detail

@@ -58,9 +58,10 @@ enum class LimitKey : int {
   kAfpCompactionMaxLeanDeg,
   kAfpCoverageMaxBarePct,  ///< afp.coverage max_bare_pct
   kAfpCoverageMaxDoubledPct,
-  kAfpMinTowLengthMm,    ///< afp.min_tow_length min_mm
-  kAfpFiberAngleMaxDeg,  ///< afp.fiber_angle max_deg
-  kTrackingErrorMm,      ///< dyn.tracking error_mm (verify --dynamics)
+  kAfpMinTowLengthMm,     ///< afp.min_tow_length min_mm
+  kAfpRestartDistanceMm,  ///< afp.restart_distance min_mm
+  kAfpFiberAngleMaxDeg,   ///< afp.fiber_angle max_deg
+  kTrackingErrorMm,       ///< dyn.tracking error_mm (verify --dynamics)
   kTrackingWarningMm,
   kCount
 };
