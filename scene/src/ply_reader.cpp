@@ -11,9 +11,8 @@
 #include "stitchsim/geom/polygon2.h"
 
 namespace stitchsim::scene::detail {
-namespace {
 
-bool NameOk(const std::string& s) {
+bool SceneNameOk(const std::string& s) {
   if (s.empty()) return false;
   for (char c : s) {
     const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
@@ -23,24 +22,44 @@ bool NameOk(const std::string& s) {
   return true;
 }
 
+namespace {
+
+std::optional<Eigen::Vector3d> ReferenceVec3(YamlReader& r, const YAML::Node& map,
+                                             std::string_view key, std::optional<LengthUnit> unit) {
+  auto n = r.Child(map, key, true);
+  if (!n) return std::nullopt;
+  auto v = r.Vector(*n, 3, key, unit);
+  if (!v) return std::nullopt;
+  return Eigen::Vector3d(*v);
+}
+
 class PlyReader {
  public:
-  PlyReader(YamlReader& r, LengthUnit unit, const Scene& scene)
-      : r_(r), unit_(unit), scene_(scene) {}
+  PlyReader(YamlReader& r, LengthUnit unit, const Scene& scene, const InlinePly* inline_ply)
+      : r_(r), unit_(unit), scene_(scene), inline_(inline_ply) {}
 
   std::optional<PlySpec> Read(const YAML::Node& item, std::set<std::string>& names) {
     if (!r_.ExpectMap(item, "a ply")) return std::nullopt;
-    r_.CheckKeys(item,
-                 {"name", "angle_deg", "reference", "boundary_uv", "boundary", "rule", "method",
-                  "coverage", "tows"},
-                 "ply");
+    if (inline_ != nullptr) {  // a laminate's stack entry: no name; its material and thickness
+      r_.CheckKeys(item,
+                   {"angle_deg", "reference", "boundary_uv", "boundary", "rule", "method",
+                    "coverage", "tows", "material", "thickness"},
+                   "laminate stack ply");
+    } else {
+      r_.CheckKeys(item,
+                   {"name", "angle_deg", "reference", "boundary_uv", "boundary", "rule", "method",
+                    "coverage", "tows"},
+                   "ply");
+    }
     PlySpec ply;
     ply.where = r_.At(item);
     const std::size_t errors = r_.Sink().ErrorCount();
-    if (auto n = r_.Child(item, "name", true)) {
+    if (inline_ != nullptr) {
+      ply.name = inline_->name;
+    } else if (auto n = r_.Child(item, "name", true)) {
       if (auto s = r_.String(*n, "ply name")) {
         ply.name = *s;
-        if (!NameOk(*s)) Bad(*n, "ply name '" + *s + "' must be letters, digits, '_' or '-'");
+        if (!SceneNameOk(*s)) Bad(*n, "ply name '" + *s + "' must be letters, digits, '_' or '-'");
         if (!names.insert(*s).second) Bad(*n, "ply '" + *s + "' is defined twice");
       }
     }
@@ -115,47 +134,24 @@ class PlyReader {
     ply.tows = static_cast<int>(*v);
   }
 
-  std::optional<Eigen::Vector3d> Vec3(const YAML::Node& map, std::string_view key, bool length) {
-    auto n = r_.Child(map, key, true);
-    if (!n) return std::nullopt;
-    auto v = length ? r_.Vector(*n, 3, key, unit_) : r_.Vector(*n, 3, key);
-    if (!v) return std::nullopt;
-    return Eigen::Vector3d(*v);
-  }
-
   bool ReadReference(const YAML::Node& item, PlySpec& ply) {
-    auto ref = r_.Child(item, "reference", true);
-    if (!ref || !r_.ExpectMap(*ref, "reference")) return false;
+    std::optional<YAML::Node> ref = r_.Child(item, "reference", inline_ == nullptr);
+    if (!ref) {  // an inline ply without a reference of its own: the laminate's rosette
+      if (inline_ == nullptr || scene_.surface == nullptr) return false;
+      ply.origin_mm = inline_->rosette.origin_mm;
+      ply.direction = inline_->rosette.direction;
+      ply.projection = inline_->rosette.projection;
+      return true;
+    }
+    if (!r_.ExpectMap(*ref, "reference")) return false;
     r_.CheckKeys(*ref, {"origin", "direction", "projection", "path"}, "ply reference");
     Choice<bool>(*ref, "path", {{"projected", false}, {"geodesic", true}}, ply.geodesic_reference);
-    auto origin = Vec3(*ref, "origin", true);
-    auto direction = Vec3(*ref, "direction", false);
-    if (!origin || !direction || scene_.surface == nullptr) return false;
-    if (direction->norm() < 1e-12) {
-      Bad(*r_.Child(*ref, "direction", true), "reference direction must not be zero");
-      return false;
-    }
-    ply.origin_mm = *origin;
-    ply.direction = direction->normalized();
-    const geom::SurfaceProjection foot = scene_.surface->Project(*origin);
-    if (!foot.inside_domain) {
-      Bad(*r_.Child(*ref, "origin", true), "reference origin does not project onto the surface");
-      return false;
-    }
-    ply.projection = -foot.normal;
-    if (r_.Child(*ref, "projection", false)) {
-      auto p = Vec3(*ref, "projection", false);
-      if (!p) return false;
-      if (p->norm() < 1e-12) {
-        Bad(*r_.Child(*ref, "projection", true), "reference projection must not be zero");
-        return false;
-      }
-      ply.projection = p->normalized();
-    }
-    if (std::abs(ply.direction.dot(foot.normal)) > 1.0 - 1e-9) {
-      Bad(*r_.Child(*ref, "direction", true), "reference direction runs along the surface normal");
-      return false;
-    }
+    if (scene_.surface == nullptr) return false;
+    auto axes = ReadReferenceAxes(r_, *ref, unit_, *scene_.surface, "bad-ply");
+    if (!axes) return false;
+    ply.origin_mm = axes->origin_mm;
+    ply.direction = axes->direction;
+    ply.projection = axes->projection;
     return true;
   }
 
@@ -219,22 +215,70 @@ class PlyReader {
   YamlReader& r_;
   LengthUnit unit_;
   const Scene& scene_;
+  const InlinePly* inline_;  ///< set for a laminate's inline ply
 };
 
 }  // namespace
 
-void ReadPlies(YamlReader& r, const YAML::Node& root, LengthUnit unit, Scene& scene) {
-  auto list = r.Child(root, "plies", false);
-  if (!list) return;
+std::optional<ReferenceAxes> ReadReferenceAxes(YamlReader& r, const YAML::Node& ref,
+                                               LengthUnit unit, const geom::Surface& surface,
+                                               std::string_view code) {
+  auto origin = ReferenceVec3(r, ref, "origin", unit);
+  auto direction = ReferenceVec3(r, ref, "direction", std::nullopt);
+  if (!origin || !direction) return std::nullopt;
+  const auto bad = [&](std::string_view key, std::string message) {
+    r.Error(*r.Child(ref, key, true), code, std::move(message));
+    return std::nullopt;
+  };
+  if (direction->norm() < 1e-12) return bad("direction", "reference direction must not be zero");
+  ReferenceAxes axes;
+  axes.origin_mm = *origin;
+  axes.direction = direction->normalized();
+  const geom::SurfaceProjection foot = surface.Project(*origin);
+  if (!foot.inside_domain) {
+    return bad("origin", "reference origin does not project onto the surface");
+  }
+  axes.projection = -foot.normal;
+  if (r.Child(ref, "projection", false)) {
+    auto p = ReferenceVec3(r, ref, "projection", std::nullopt);
+    if (!p) return std::nullopt;
+    if (p->norm() < 1e-12) return bad("projection", "reference projection must not be zero");
+    axes.projection = p->normalized();
+  }
+  if (std::abs(axes.direction.dot(foot.normal)) > 1.0 - 1e-9) {
+    return bad("direction", "reference direction runs along the surface normal");
+  }
+  if (std::abs(axes.direction.dot(axes.projection)) > 1.0 - 1e-9) {
+    return bad("direction", "reference direction runs along the projection");
+  }
+  return axes;
+}
+
+std::optional<PlySpec> ReadInlinePly(YamlReader& r, const YAML::Node& item, LengthUnit unit,
+                                     const Scene& scene, const InlinePly& inline_ply) {
+  std::set<std::string> names;
+  return PlyReader(r, unit, scene, &inline_ply).Read(item, names);
+}
+
+std::optional<YAML::Node> SceneList(YamlReader& r, const YAML::Node& root, std::string_view key,
+                                    std::string_view code, std::size_t most) {
+  auto list = r.Child(root, key, false);
+  if (!list) return std::nullopt;
   if (!list->IsSequence() || list->size() == 0) {
-    r.Error(*list, "bad-ply", "plies must be a non-empty list");
-    return;
+    r.Error(*list, code, std::string(key) + " must be a non-empty list");
+    return std::nullopt;
   }
-  if (list->size() > 1000) {
-    r.Error(*list, "bad-ply", "a scene has at most 1000 plies");
-    return;
+  if (list->size() > most) {
+    r.Error(*list, code, "a scene has at most " + std::to_string(most) + " " + std::string(key));
+    return std::nullopt;
   }
-  PlyReader reader(r, unit, scene);
+  return list;
+}
+
+void ReadPlies(YamlReader& r, const YAML::Node& root, LengthUnit unit, Scene& scene) {
+  auto list = SceneList(r, root, "plies", "bad-ply", 1000);
+  if (!list) return;
+  PlyReader reader(r, unit, scene, nullptr);
   std::set<std::string> names;
   for (const auto& item : *list) {
     if (auto ply = reader.Read(item, names)) scene.plies.push_back(std::move(*ply));

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "cad_surface_reader.h"
+#include "laminate_reader.h"
 #include "limit_map.h"
 #include "ply_reader.h"
 #include "scene_bounds.h"
@@ -31,11 +32,11 @@ class SceneLoader {
     auto root = r_.LoadFile();
     if (!root) return nullptr;
     if (!r_.ExpectMap(*root, "a scene")) return nullptr;
-    r_.CheckKeys(
-        *root,
-        {"stitchsim_scene", "name", "description", "units", "head", "cell", "part", "surface",
-         "preform", "mold", "stitch", "constraints", "paths", "limits", "rail", "raster", "plies"},
-        "scene");
+    r_.CheckKeys(*root,
+                 {"stitchsim_scene", "name", "description", "units", "head", "cell", "part",
+                  "surface", "preform", "mold", "stitch", "constraints", "paths", "limits", "rail",
+                  "raster", "plies", "laminates"},
+                 "scene");
     auto scene = std::make_unique<Scene>();
     scene->file = r_.File();
     const auto dir = r_.File().parent_path();
@@ -93,6 +94,7 @@ class SceneLoader {
     ReadRail(*root, *scene);
     ReadRaster(*root, *scene);
     detail::ReadPlies(r_, *root, unit_, *scene);
+    detail::ReadLaminates(r_, *root, unit_, *scene);
     if (sink_.ErrorCount() > errors_before) return nullptr;
     return scene;
   }

@@ -1,5 +1,6 @@
 // `stitchsim plan ply` (issue 12, S8): the bundled panel's plies planned and verified clean;
-// a bad ply is exit 2 at its file:line with no output; an unknown ply name is exit 2.
+// a bad ply is exit 2 at its file:line with no output; an unknown ply name is exit 2; so is a
+// laminate that stacks an unknown ply (issue 29).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -86,6 +87,19 @@ TEST(PlanPly, WingPliesPlanAndVerifyClean) {
   }
 }
 
+// `plan ply --ply skin_0` on `scene`: exit 2 with error[`code`] at `scene`:`line` on stderr,
+// and `nc` not written.
+CliRun ExpectPlanRefused(const fs::path& scene, const fs::path& nc, int line,
+                         const std::string& code) {
+  const CliRun r = Cli("plan ply --scene " + scene.string() + " --ply skin_0 -o " + nc.string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(scene.string() + ":" + std::to_string(line) + ":"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("error[" + code + "]"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(nc));
+  return r;
+}
+
 TEST(PlanPly, BadPlyIsExit2AtItsLineAndWritesNothing) {
   const std::string text = testing::ReadText(kPanel);
   const std::string key = "    coverage: 50";
@@ -96,12 +110,7 @@ TEST(PlanPly, BadPlyIsExit2AtItsLineAndWritesNothing) {
   const fs::path scene = testing::ScratchDir() / "bad_ply.yaml";
   std::ofstream(scene) << text.substr(0, at) << "    coverage: 30" << text.substr(at + key.size());
   const fs::path nc = testing::ScratchDir() / "bad_ply.nc";
-  const CliRun r = Cli("plan ply --scene " + scene.string() + " --ply skin_0 -o " + nc.string());
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find(scene.string() + ":" + std::to_string(line) + ":"), std::string::npos)
-      << r.err;
-  EXPECT_NE(r.err.find("error[scene-bad-ply]"), std::string::npos) << r.err;
-  EXPECT_FALSE(fs::exists(nc));
+  ExpectPlanRefused(scene, nc, line, "scene-bad-ply");
 }
 
 // A head whose minimum steering radius the panel's tows go below: a finding of the plan,
@@ -126,6 +135,23 @@ TEST(PlanPly, SteeringBelowTheHeadsLimitIsExit1) {
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("error[ply-steering-radius]"), std::string::npos) << r.out;
   EXPECT_TRUE(fs::exists(nc));
+}
+
+// Issue 29, Done-when 5: a laminate that stacks a ply the scene does not define is refused
+// when the scene is read: exit 2, the stack entry's file:line on stderr, nothing written.
+TEST(PlanPly, LaminateWithAnUnknownPlyIsExit2AtItsLine) {
+  const std::string text = testing::ReadText(kPanel);
+  const std::string laminate =
+      "laminates:\n  - name: skin\n    rosette: {origin: [0, 0, 100], direction: [1, 0, 0]}\n"
+      "    stagger: {offset: 10, plies_before_repeat: 2}\n    stack:\n      - skin_0\n"
+      "      - skin_90\n";
+  const int line = static_cast<int>(std::count(text.begin(), text.end(), '\n')) + 7;
+  ASSERT_EQ(text.back(), '\n');
+  const fs::path scene = testing::ScratchDir() / "bad_laminate.yaml";
+  std::ofstream(scene) << text << laminate;
+  const fs::path nc = testing::ScratchDir() / "bad_laminate.nc";
+  const CliRun r = ExpectPlanRefused(scene, nc, line, "scene-bad-laminate");
+  EXPECT_NE(r.err.find("unknown ply 'skin_90'"), std::string::npos) << r.err;
 }
 
 TEST(PlanPly, UnknownPlyIsExit2) {

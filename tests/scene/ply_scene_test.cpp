@@ -95,6 +95,11 @@ TEST(ScenePlies, EveryBadPlyIsReportedAtItsLine) {
       {Ply("a", good) + Ply("a", good), 20},  // the name twice
       {Ply("a b", good), 19},
       {Ply("a", "boundary_uv: [[0, 0], [100, 0], [0, 100]], boundary: [[0, 0, 0]]"), 19},
+      // a reference direction along the projection (issue 29: shared with a laminate's rosette)
+      {"  - {name: a, reference: {origin: [0, 0, 50], direction: [1, 0, 0], projection: [2, 0, "
+       "0]}, " +
+           good + "}\n",
+       19},
       // block style: the point itself
       {"  - name: a\n    " + std::string(kRef) +
            "\n    boundary_uv:\n      - [0, 0]\n      - [0, 100]\n      - [350, 100]\n",

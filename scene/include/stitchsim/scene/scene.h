@@ -15,6 +15,7 @@
 #include "stitchsim/geom/curve.h"
 #include "stitchsim/geom/surface.h"
 #include "stitchsim/scene/head_spec.h"
+#include "stitchsim/scene/laminate.h"
 #include "stitchsim/scene/ply.h"
 
 namespace stitchsim::scene {
@@ -53,7 +54,8 @@ struct Scene {
   double mold_depth_mm = 50.0;
   std::vector<Constraint> constraints;
   std::vector<PathSpec> paths;
-  std::vector<PlySpec> plies;  ///< AFP plies (`plies:`), in lay-up order
+  std::vector<PlySpec> plies;           ///< AFP plies (`plies:`), in lay-up order
+  std::vector<LaminateSpec> laminates;  ///< `laminates:`; their inline plies end `plies`
   double nominal_stitch_length_mm = 5.0;
   RuleLimits limits;            ///< the head's limits overridden key by key by the scene's
   double rail_offset_mm = 0.0;  ///< rail policy: carriage x minus tool x (world), preferred
