@@ -159,6 +159,9 @@ TEST(RuleRegistry, MadeAndSkippedRulesAreTheApplyingOnesOnceEachInEveryContext) 
           EXPECT_EQ(s.reason,
                     "no minimum restart distance given (limits: afp.restart_distance: {min_mm: "
                     "...})");
+        } else if (s.id == "afp.stagger") {
+          EXPECT_TRUE(c.loaded.scene->laminates.empty());
+          EXPECT_EQ(s.reason, "no laminate in the scene (laminates:)");
         } else if (s.id == "kin.acceleration" || s.id == "kin.torque") {
           EXPECT_FALSE(c.cell.timed);
           EXPECT_EQ(s.reason, "the trace has no timed trajectory");
@@ -208,8 +211,9 @@ TEST(RuleRegistry, TwoContextsListedByHand) {
                 "kin.config_flip", "kin.joint_speed", "kin.acceleration", "kin.torque",
                 "kin.payload", "program.sync", "program.line_sampling", "collision.head_mold",
                 "collision.robot_cell", "collision.clearance"}));
-  EXPECT_EQ(IdsOf(SkippedRules(actx)),
-            (std::vector<std::string>{"afp.min_tow_length", "afp.restart_distance"}));
+  EXPECT_EQ(
+      IdsOf(SkippedRules(actx)),
+      (std::vector<std::string>{"afp.min_tow_length", "afp.restart_distance", "afp.stagger"}));
   // With a minimum tow length and restart distance given, they run after afp.coverage.
   afp.loaded.scene->limits.Set(scene::LimitKey::kAfpMinTowLengthMm, 100.0);
   afp.loaded.scene->limits.Set(scene::LimitKey::kAfpRestartDistanceMm, 80.0);
@@ -219,6 +223,12 @@ TEST(RuleRegistry, TwoContextsListedByHand) {
   EXPECT_EQ(with_minimum[5], "afp.min_tow_length");
   EXPECT_EQ(with_minimum[6], "afp.restart_distance");
   EXPECT_EQ(with_minimum[7], "afp.fiber_angle");
+  EXPECT_EQ(IdsOf(SkippedRules(afp.Rules())), (std::vector<std::string>{"afp.stagger"}));
+  // With a laminate, afp.stagger runs after afp.fiber_angle.
+  afp.loaded.scene->laminates.emplace_back();
+  const std::vector<std::string> with_laminate = IdsOf(MakeRules(afp.Rules()));
+  ASSERT_GE(with_laminate.size(), 9u);
+  EXPECT_EQ(with_laminate[8], "afp.stagger");
   EXPECT_TRUE(SkippedRules(afp.Rules()).empty());
 }
 

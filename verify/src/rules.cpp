@@ -21,6 +21,7 @@
   X(AfpMinTowLengthRuleEntry)      \
   X(AfpRestartDistanceRuleEntry)   \
   X(AfpFiberAngleRuleEntry)        \
+  X(AfpStaggerRuleEntry)           \
   X(ReachRuleEntry)                \
   X(JointLimitRuleEntry)           \
   X(SingularityRuleEntry)          \
