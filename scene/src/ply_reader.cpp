@@ -32,7 +32,7 @@ class PlyReader {
     if (!r_.ExpectMap(item, "a ply")) return std::nullopt;
     r_.CheckKeys(item,
                  {"name", "angle_deg", "reference", "boundary_uv", "boundary", "rule", "method",
-                  "coverage", "tows"},
+                  "coverage", "tows", "material"},
                  "ply");
     PlySpec ply;
     ply.where = r_.At(item);
@@ -49,6 +49,7 @@ class PlyReader {
     }
     ReadEnums(item, ply);
     ReadTows(item, ply);
+    ReadMaterial(item, ply);
     const bool reference_ok = ReadReference(item, ply);
     if (reference_ok) ReadBoundary(item, ply);
     if (r_.Sink().ErrorCount() > errors) return std::nullopt;
@@ -113,6 +114,23 @@ class PlyReader {
       return;
     }
     ply.tows = static_cast<int>(*v);
+  }
+
+  // `material:`: a name among the scene's materials (read before the plies).
+  void ReadMaterial(const YAML::Node& item, PlySpec& ply) {
+    auto n = r_.Child(item, "material", false);
+    if (!n) return;
+    auto s = r_.String(*n, "ply material");
+    if (!s) return;
+    for (const MaterialSpec& m : scene_.materials) {
+      if (m.name == *s) {
+        ply.material = m.name;
+        ply.thickness_mm = m.ply_thickness_mm;
+        ply.areal_weight_g_m2 = m.areal_weight_g_m2;
+        return;
+      }
+    }
+    Bad(*n, "ply '" + ply.name + "' names material '" + *s + "', not among the scene's materials");
   }
 
   std::optional<Eigen::Vector3d> Vec3(const YAML::Node& map, std::string_view key, bool length) {
@@ -223,7 +241,49 @@ class PlyReader {
 
 }  // namespace
 
+static void ReadMaterials(YamlReader& r, const YAML::Node& root, LengthUnit unit, Scene& scene) {
+  auto list = r.Child(root, "materials", false);
+  if (!list) return;
+  if (!list->IsSequence() || list->size() == 0) {
+    r.Error(*list, "bad-material", "materials must be a non-empty list");
+    return;
+  }
+  std::set<std::string> names;
+  for (const auto& item : *list) {
+    if (!r.ExpectMap(item, "a material")) continue;
+    r.CheckKeys(item, {"name", "ply_thickness", "areal_weight_g_m2"}, "material");
+    MaterialSpec m;
+    m.where = r.At(item);
+    const std::size_t errors = r.Sink().ErrorCount();
+    if (auto n = r.Child(item, "name", true)) {
+      if (auto s = r.String(*n, "material name")) {
+        m.name = *s;
+        if (!NameOk(*s)) {
+          r.Error(*n, "bad-material",
+                  "material name '" + *s + "' must be letters, digits, '_' or '-'");
+        }
+        if (!names.insert(*s).second) {
+          r.Error(*n, "bad-material", "material '" + *s + "' is defined twice");
+        }
+      }
+    }
+    if (auto n = r.Child(item, "ply_thickness", true)) {
+      if (auto v = r.Length(*n, unit, "ply_thickness"); v && r.Positive(*n, *v, "ply_thickness")) {
+        m.ply_thickness_mm = *v;
+      }
+    }
+    if (auto n = r.Child(item, "areal_weight_g_m2", true)) {
+      if (auto v = r.Number(*n, "areal_weight_g_m2");
+          v && r.Positive(*n, *v, "areal_weight_g_m2")) {
+        m.areal_weight_g_m2 = *v;
+      }
+    }
+    if (r.Sink().ErrorCount() == errors) scene.materials.push_back(std::move(m));
+  }
+}
+
 void ReadPlies(YamlReader& r, const YAML::Node& root, LengthUnit unit, Scene& scene) {
+  ReadMaterials(r, root, unit, scene);
   auto list = r.Child(root, "plies", false);
   if (!list) return;
   if (!list->IsSequence() || list->size() == 0) {

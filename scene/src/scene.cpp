@@ -31,11 +31,11 @@ class SceneLoader {
     auto root = r_.LoadFile();
     if (!root) return nullptr;
     if (!r_.ExpectMap(*root, "a scene")) return nullptr;
-    r_.CheckKeys(
-        *root,
-        {"stitchsim_scene", "name", "description", "units", "head", "cell", "part", "surface",
-         "preform", "mold", "stitch", "constraints", "paths", "limits", "rail", "raster", "plies"},
-        "scene");
+    r_.CheckKeys(*root,
+                 {"stitchsim_scene", "name", "description", "units", "head", "cell", "part",
+                  "surface", "preform", "mold", "stitch", "constraints", "paths", "limits", "rail",
+                  "raster", "plies", "materials"},
+                 "scene");
     auto scene = std::make_unique<Scene>();
     scene->file = r_.File();
     const auto dir = r_.File().parent_path();

@@ -154,7 +154,8 @@ TEST(RuleRegistry, MadeAndSkippedRulesAreTheApplyingOnesOnceEachInEveryContext) 
           EXPECT_EQ(s.reason, "--no-collision");
         } else if (s.id == "afp.min_tow_length") {
           EXPECT_EQ(s.reason,
-                    "no minimum tow length given (limits: afp.min_tow_length: {min_mm: ...})");
+                    "no minimum tow length given (limits: afp.min_tow_length: {min_mm: ...}, or "
+                    "the head's afp.cut_to_roller_mm)");
         } else if (s.id == "kin.acceleration" || s.id == "kin.torque") {
           EXPECT_FALSE(c.cell.timed);
           EXPECT_EQ(s.reason, "the trace has no timed trajectory");
@@ -197,15 +198,18 @@ TEST(RuleRegistry, TwoContextsListedByHand) {
   afp.loaded.scene->head.inertial = FiveKilograms();
   afp.declared = 40;  // no program.stitch_count for a head that does not stitch
   const RuleContext actx = afp.Rules();
-  EXPECT_EQ(
-      IdsOf(MakeRules(actx)),
-      (std::vector<std::string>{
-          "afp.steering_radius", "afp.gap", "afp.overlap", "afp.compaction", "afp.coverage",
-          "kin.reach", "kin.joint_limit", "kin.singularity", "kin.config_flip", "kin.joint_speed",
-          "kin.acceleration", "kin.torque", "kin.payload", "program.sync", "program.line_sampling",
-          "collision.head_mold", "collision.robot_cell", "collision.clearance"}));
-  EXPECT_EQ(IdsOf(SkippedRules(actx)), (std::vector<std::string>{"afp.min_tow_length"}));
-  // With a minimum tow length given, it runs after afp.coverage.
+  EXPECT_EQ(IdsOf(MakeRules(actx)),
+            (std::vector<std::string>{
+                "afp.steering_radius", "afp.gap", "afp.overlap", "afp.compaction", "afp.coverage",
+                "afp.min_tow_length", "kin.reach", "kin.joint_limit", "kin.singularity",
+                "kin.config_flip", "kin.joint_speed", "kin.acceleration", "kin.torque",
+                "kin.payload", "program.sync", "program.line_sampling", "collision.head_mold",
+                "collision.robot_cell", "collision.clearance"}));
+  // The bundled head gives its cutter-to-roller distance: afp.min_tow_length runs with it.
+  EXPECT_TRUE(SkippedRules(actx).empty());
+  // Without it and without a scene limit the rule is skipped; a scene limit brings it back.
+  afp.loaded.scene->head.afp.cut_to_roller_mm.reset();
+  EXPECT_EQ(IdsOf(SkippedRules(afp.Rules())), (std::vector<std::string>{"afp.min_tow_length"}));
   afp.loaded.scene->limits.Set(scene::LimitKey::kAfpMinTowLengthMm, 100.0);
   const std::vector<std::string> with_minimum = IdsOf(MakeRules(afp.Rules()));
   ASSERT_GE(with_minimum.size(), 6u);

@@ -53,7 +53,8 @@ struct Scene {
   double mold_depth_mm = 50.0;
   std::vector<Constraint> constraints;
   std::vector<PathSpec> paths;
-  std::vector<PlySpec> plies;  ///< AFP plies (`plies:`), in lay-up order
+  std::vector<PlySpec> plies;           ///< AFP plies (`plies:`), in lay-up order
+  std::vector<MaterialSpec> materials;  ///< `materials:`, in file order (the plies name them)
   double nominal_stitch_length_mm = 5.0;
   RuleLimits limits;            ///< the head's limits overridden key by key by the scene's
   double rail_offset_mm = 0.0;  ///< rail policy: carriage x minus tool x (world), preferred
