@@ -20,7 +20,7 @@ double PieceTime(double d, double v_in, double v_out, double v_max, double a) {
   return (2.0 * v_max - v_in - v_out) / a + (d - ramps_mm) / v_max;
 }
 
-std::vector<FeedPiece> Usable(const std::vector<FeedPiece>& pieces) {
+std::vector<FeedPiece> MovingPieces(const std::vector<FeedPiece>& pieces) {
   std::vector<FeedPiece> out;
   for (const FeedPiece& p : pieces)
     if (p.length_mm > 0.0 && p.feed_mm_s > 0.0) out.push_back(p);
@@ -31,13 +31,13 @@ std::vector<FeedPiece> Usable(const std::vector<FeedPiece>& pieces) {
 
 double FeedTime(const std::vector<FeedPiece>& pieces) {
   double t = 0.0;
-  for (const FeedPiece& p : Usable(pieces)) t += p.length_mm / p.feed_mm_s;
+  for (const FeedPiece& p : MovingPieces(pieces)) t += p.length_mm / p.feed_mm_s;
   return t;
 }
 
 double RampedTime(const std::vector<FeedPiece>& all, double ramp_time_s) {
   if (ramp_time_s <= 0.0) return FeedTime(all);
-  const std::vector<FeedPiece> p = Usable(all);
+  const std::vector<FeedPiece> p = MovingPieces(all);
   const std::size_t n = p.size();
   if (n == 0) return 0.0;
   // Node speeds (mm/s) at the pieces' ends: at rest at both ends, at most the slower
