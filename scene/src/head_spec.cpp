@@ -186,10 +186,10 @@ void ReadAfp(detail::YamlReader& r, const YAML::Node& root, HeadSpec& h) {
     };
     optional_num("cut_to_roller_mm", h.afp.cut_to_roller_mm);
     optional_num("min_restart_mm", h.afp.min_restart_mm);
-    const bool feed = r.Child(*af, "cut_add_feed_mm_s", false).has_value();
-    const bool zone = r.Child(*af, "cut_add_zone_mm", false).has_value();
-    if (feed != zone) {
-      r.Error(*af, "missing-key",
+    const auto feed = r.Child(*af, "cut_add_feed_mm_s", false);
+    const auto zone = r.Child(*af, "cut_add_zone_mm", false);
+    if (feed.has_value() != zone.has_value()) {  // at the one given
+      r.Error(feed ? *feed : *zone, "missing-key",
               "cut_add_feed_mm_s and cut_add_zone_mm go together (the feed within the zone)");
     } else if (feed) {
       num("cut_add_feed_mm_s", h.afp.cut_add_feed_mm_s);

@@ -83,10 +83,10 @@ TEST(HeadAfpCut, BadValuesAreRefusedAtTheirLine) {
     ASSERT_NE(d, sink.Diagnostics().end())
         << (sink.Diagnostics().empty() ? std::string("no diagnostic")
                                        : FormatDiagnostic(sink.Diagnostics()[0]));
-    // A value at its own line; the missing zone at the `afp:` block.
-    if (c.to.empty()) {
-      const std::size_t block = text.find("\nafp:\n") + 1;
-      line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(block), '\n');
+    // A value at its own line.
+    if (c.to.empty()) {  // the zone missing: reported at the feed given without it
+      const std::size_t feed = text.find("cut_add_feed_mm_s:");
+      line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(feed), '\n');
     }
     EXPECT_EQ(d->location.line, line);
     EXPECT_EQ(d->location.file, (dir / "h.yaml").string());

@@ -22,8 +22,8 @@ std::string SceneText(const std::string& units, const std::string& plies,
 }
 
 std::string Ply(const std::string& name, const std::string& rest = "") {
-  return "  - {name: " + name + ", reference: {origin: [0, 0, 50], direction: [1, 0, 0]}" + rest +
-         "}\n";
+  return "  - {name: " + name + ", reference: {origin: [0, 0, 50], direction: [1, 0, 0]}, " +
+         "boundary_uv: [[0, 0], [100, 0], [100, 100]]" + rest + "}\n";
 }
 
 testing::Loaded Load(const std::string& text) {
@@ -36,7 +36,7 @@ TEST(SceneMaterials, PliesTakeTheirMaterialsValues) {
                      "materials:\n  - {name: im7, ply_thickness: 0.25, areal_weight_g_m2: 190}\n"));
   ASSERT_TRUE(r.scene) << r.code << " " << r.message;
   ASSERT_EQ(r.scene->materials.size(), 1u);
-  EXPECT_EQ(r.scene->materials[0].where.line, 21);
+  EXPECT_EQ(r.scene->materials[0].where.line, 22);  // two plies: `materials:` at 21
   const PlySpec& a = r.scene->plies[0];
   EXPECT_EQ(a.material, "im7");
   EXPECT_EQ(a.thickness_mm, 0.25);
@@ -67,20 +67,20 @@ TEST(SceneMaterials, EveryBadMaterialIsReportedAtItsLine) {
                        "areal_weight_g_m2: 300}\n",
                 "scene-bad-ply", 19},
            Case{Ply("a"), head + "  - {name: m, ply_thickness: -0.2, areal_weight_g_m2: 300}\n",
-                "scene-out-of-range", 20},
+                "scene-out-of-range", 21},
            Case{Ply("a"), head + "  - {name: m, ply_thickness: 0, areal_weight_g_m2: 300}\n",
-                "scene-out-of-range", 20},
+                "scene-out-of-range", 21},
            Case{Ply("a"), head + "  - {name: m, ply_thickness: 0.2, areal_weight_g_m2: 0}\n",
-                "scene-out-of-range", 20},
+                "scene-out-of-range", 21},
            Case{Ply("a"), head + "  - {name: m, ply_thickness: 0.2, areal_weight_g_m2: -5}\n",
-                "scene-out-of-range", 20},
+                "scene-out-of-range", 21},
            Case{Ply("a"), head + "  - {name: m, areal_weight_g_m2: 300}\n", "scene-missing-key",
-                20},
+                21},
            Case{Ply("a"),
                 head + "  - {name: m, ply_thickness: 0.2, areal_weight_g_m2: 300}\n" +
                     "  - {name: m, ply_thickness: 0.3, areal_weight_g_m2: 300}\n",
-                "scene-bad-material", 21},
-           Case{Ply("a"), "materials: []\n", "scene-bad-material", 19},
+                "scene-bad-material", 22},
+           Case{Ply("a"), "materials: []\n", "scene-bad-material", 20},
        }) {
     SCOPED_TRACE(c.materials);
     const testing::Loaded r = Load(SceneText("mm", c.plies, c.materials));
