@@ -34,6 +34,7 @@ std::unique_ptr<sim::MujocoCell> MakeMujoco(const RunModel& m, DiagnosticSink& s
 verify::RuleContext RunModel::Rules() const {
   verify::RuleContext ctx{loaded.scene.get(), &description, process.get()};
   ctx.declared_stitches = declared_stitches;
+  ctx.ramp_time_s = dialect.trajectory.ramp_time_s;
   return ctx;
 }
 

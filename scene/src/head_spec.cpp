@@ -16,11 +16,15 @@ namespace {
 
 // The required number `map[key]`, > 0 (>= 0 with allow_zero), into `out`; a missing or bad
 // value is reported (and the spec then fails to load).
-void ReadPositive(detail::YamlReader& r, const YAML::Node& map, std::string_view key, double& out,
+bool ReadPositive(detail::YamlReader& r, const YAML::Node& map, std::string_view key, double& out,
                   bool allow_zero = false) {
   if (auto n = r.Child(map, key, true)) {
-    if (auto v = r.Number(*n, key); v && r.Positive(*n, *v, key, allow_zero)) out = *v;
+    if (auto v = r.Number(*n, key); v && r.Positive(*n, *v, key, allow_zero)) {
+      out = *v;
+      return true;
+    }
   }
+  return false;
 }
 
 // A whole number in [lo, hi] into `out`; anything else (a fraction, 1e300) is reported, never
@@ -162,7 +166,8 @@ void ReadAfp(detail::YamlReader& r, const YAML::Node& root, HeadSpec& h) {
   if (auto af = r.Child(root, "afp", h.kind == HeadKind::kAfp); af && r.ExpectMap(*af, "afp")) {
     r.CheckKeys(*af,
                 {"tows", "tow_width_mm", "roller_radius_mm", "min_steering_radius_mm",
-                 "layup_speed_mm_s", "rapid_speed_mm_s"},
+                 "layup_speed_mm_s", "rapid_speed_mm_s", "cut_to_roller_mm", "min_restart_mm",
+                 "cut_add_feed_mm_s", "cut_add_zone_mm"},
                 "afp");
     auto num = [&](std::string_view key, double& out) { ReadPositive(r, *af, key, out); };
     if (auto n = r.Child(*af, "tows", true)) {
@@ -173,6 +178,23 @@ void ReadAfp(detail::YamlReader& r, const YAML::Node& root, HeadSpec& h) {
     num("min_steering_radius_mm", h.afp.min_steering_radius_mm);
     num("layup_speed_mm_s", h.afp.layup_speed_mm_s);
     num("rapid_speed_mm_s", h.afp.rapid_speed_mm_s);
+    // Optional: absent leaves the parameter not given.
+    auto optional_num = [&](std::string_view key, std::optional<double>& out) {
+      if (!r.Child(*af, key, false)) return;
+      double v = 0.0;
+      if (ReadPositive(r, *af, key, v)) out = v;
+    };
+    optional_num("cut_to_roller_mm", h.afp.cut_to_roller_mm);
+    optional_num("min_restart_mm", h.afp.min_restart_mm);
+    const auto feed = r.Child(*af, "cut_add_feed_mm_s", false);
+    const auto zone = r.Child(*af, "cut_add_zone_mm", false);
+    if (feed.has_value() != zone.has_value()) {  // at the one given
+      r.Error(feed ? *feed : *zone, "missing-key",
+              "cut_add_feed_mm_s and cut_add_zone_mm go together (the feed within the zone)");
+    } else if (feed) {
+      num("cut_add_feed_mm_s", h.afp.cut_add_feed_mm_s);
+      num("cut_add_zone_mm", h.afp.cut_add_zone_mm);
+    }
   }
 }
 

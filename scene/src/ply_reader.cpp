@@ -48,7 +48,7 @@ class PlyReader {
     } else {
       r_.CheckKeys(item,
                    {"name", "angle_deg", "reference", "boundary_uv", "boundary", "rule", "method",
-                    "coverage", "tows"},
+                    "coverage", "tows", "material"},
                    "ply");
     }
     PlySpec ply;
@@ -68,6 +68,7 @@ class PlyReader {
     }
     ReadEnums(item, ply);
     ReadTows(item, ply);
+    if (inline_ == nullptr) ReadMaterial(item, ply);  // a stack entry's is the laminate's
     const bool reference_ok = ReadReference(item, ply);
     if (reference_ok) ReadBoundary(item, ply);
     if (r_.Sink().ErrorCount() > errors) return std::nullopt;
@@ -132,6 +133,23 @@ class PlyReader {
       return;
     }
     ply.tows = static_cast<int>(*v);
+  }
+
+  // `material:`: a name among the scene's materials (read before the plies).
+  void ReadMaterial(const YAML::Node& item, PlySpec& ply) {
+    auto n = r_.Child(item, "material", false);
+    if (!n) return;
+    auto s = r_.String(*n, "ply material");
+    if (!s) return;
+    for (const MaterialSpec& m : scene_.materials) {
+      if (m.name == *s) {
+        ply.material = m.name;
+        ply.thickness_mm = m.ply_thickness_mm;
+        ply.areal_weight_g_m2 = m.areal_weight_g_m2;
+        return;
+      }
+    }
+    Bad(*n, "ply '" + ply.name + "' names material '" + *s + "', not among the scene's materials");
   }
 
   bool ReadReference(const YAML::Node& item, PlySpec& ply) {
@@ -260,6 +278,47 @@ std::optional<PlySpec> ReadInlinePly(YamlReader& r, const YAML::Node& item, Leng
   return PlyReader(r, unit, scene, &inline_ply).Read(item, names);
 }
 
+static void ReadMaterials(YamlReader& r, const YAML::Node& root, LengthUnit unit, Scene& scene) {
+  auto list = r.Child(root, "materials", false);
+  if (!list) return;
+  if (!list->IsSequence() || list->size() == 0) {
+    r.Error(*list, "bad-material", "materials must be a non-empty list");
+    return;
+  }
+  std::set<std::string> names;
+  for (const auto& item : *list) {
+    if (!r.ExpectMap(item, "a material")) continue;
+    r.CheckKeys(item, {"name", "ply_thickness", "areal_weight_g_m2"}, "material");
+    MaterialSpec m;
+    m.where = r.At(item);
+    const std::size_t errors = r.Sink().ErrorCount();
+    if (auto n = r.Child(item, "name", true)) {
+      if (auto s = r.String(*n, "material name")) {
+        m.name = *s;
+        if (!SceneNameOk(*s)) {
+          r.Error(*n, "bad-material",
+                  "material name '" + *s + "' must be letters, digits, '_' or '-'");
+        }
+        if (!names.insert(*s).second) {
+          r.Error(*n, "bad-material", "material '" + *s + "' is defined twice");
+        }
+      }
+    }
+    if (auto n = r.Child(item, "ply_thickness", true)) {
+      if (auto v = r.Length(*n, unit, "ply_thickness"); v && r.Positive(*n, *v, "ply_thickness")) {
+        m.ply_thickness_mm = *v;
+      }
+    }
+    if (auto n = r.Child(item, "areal_weight_g_m2", true)) {
+      if (auto v = r.Number(*n, "areal_weight_g_m2");
+          v && r.Positive(*n, *v, "areal_weight_g_m2")) {
+        m.areal_weight_g_m2 = *v;
+      }
+    }
+    if (r.Sink().ErrorCount() == errors) scene.materials.push_back(std::move(m));
+  }
+}
+
 std::optional<YAML::Node> SceneList(YamlReader& r, const YAML::Node& root, std::string_view key,
                                     std::string_view code, std::size_t most) {
   auto list = r.Child(root, key, false);
@@ -276,6 +335,7 @@ std::optional<YAML::Node> SceneList(YamlReader& r, const YAML::Node& root, std::
 }
 
 void ReadPlies(YamlReader& r, const YAML::Node& root, LengthUnit unit, Scene& scene) {
+  ReadMaterials(r, root, unit, scene);
   auto list = SceneList(r, root, "plies", "bad-ply", 1000);
   if (!list) return;
   PlyReader reader(r, unit, scene, nullptr);

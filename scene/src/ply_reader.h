@@ -1,6 +1,8 @@
 #pragma once
 // Reads a scene's `plies:` list (docs/scene-format.md) into scene::PlySpec, after the surface
-// and the head are read. Every problem with a ply is `scene-bad-ply` at its file:line.
+// and the head are read, and the `materials:` list the plies name (read first). Every problem
+// with a ply is `scene-bad-ply`, with a material `scene-bad-material` (or the reader's
+// number codes), at its file:line.
 
 #include <yaml-cpp/yaml.h>
 
@@ -51,7 +53,8 @@ std::optional<PlySpec> ReadInlinePly(YamlReader& r, const YAML::Node& item, Leng
 std::optional<YAML::Node> SceneList(YamlReader& r, const YAML::Node& root, std::string_view key,
                                     std::string_view code, std::size_t most);
 
-/// Appends the plies of `root["plies"]` (optional) to scene.plies; errors go to the reader.
+/// Appends the materials of `root["materials"]` (optional) to scene.materials, then the plies
+/// of `root["plies"]` (optional) to scene.plies; errors go to the reader.
 void ReadPlies(YamlReader& r, const YAML::Node& root, LengthUnit unit, Scene& scene);
 
 }  // namespace stitchsim::scene::detail

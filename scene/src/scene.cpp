@@ -35,7 +35,7 @@ class SceneLoader {
     r_.CheckKeys(*root,
                  {"stitchsim_scene", "name", "description", "units", "head", "cell", "part",
                   "surface", "preform", "mold", "stitch", "constraints", "paths", "limits", "rail",
-                  "raster", "plies", "laminates"},
+                  "raster", "plies", "laminates", "materials"},
                  "scene");
     auto scene = std::make_unique<Scene>();
     scene->file = r_.File();

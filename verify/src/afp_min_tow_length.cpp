@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,12 @@
 
 namespace stitchsim::verify {
 namespace {
+
+// The scene's limit (afp.min_tow_length min_mm), else the head's cutter-to-roller distance.
+std::optional<double> MinTowLength(const RuleContext& ctx) {
+  const std::optional<double> given = ctx.scene->limits.Get(scene::LimitKey::kAfpMinTowLengthMm);
+  return given ? given : ctx.scene->head.afp.cut_to_roller_mm;
+}
 
 using detail::LaidLine;
 
@@ -34,7 +41,7 @@ class MinTowLengthRule final : public Rule {
              "mm"),
         laid_(std::move(laid)),
         tows_(static_cast<std::size_t>(laid_->Layout().tows) + 1) {
-    summary_.error_limit = ctx.scene->limits.Get(scene::LimitKey::kAfpMinTowLengthMm);  // given
+    summary_.error_limit = MinTowLength(ctx);  // given (the entry skips the rule otherwise)
     worst_is_smallest_ = true;
     mergeable_ = false;  // a piece runs over many lines (Rule::Mergeable)
     for (int t = 1; t <= laid_->Layout().tows; ++t) {

@@ -89,6 +89,23 @@ Json RuleToJson(const RuleSummary& rule) {
   return j;
 }
 
+Json LaydownToJson(const LaydownFigures& f) {
+  Json j = Json::object();
+  j["ply"] = f.ply;
+  j["laid_path_mm"] = Number(f.laid_path_mm);
+  j["laydown_s"] = Number(f.laydown_s);
+  j["laydown_timed_s"] = Number(f.laydown_timed_s);
+  j["off_part_s"] = Number(f.off_part_s);
+  j["off_part_timed_s"] = Number(f.off_part_timed_s);
+  j["tow_length_mm"] = Number(f.tow_length_mm);
+  j["material_kg"] = Number(f.material_kg);
+  j["rate_kg_h"] = Number(f.rate_kg_h);
+  j["tows_added"] = f.tows_added;
+  j["tows_cut"] = f.tows_cut;
+  j["shortest_tow_mm"] = OptionalNumber(f.shortest_tow_mm);
+  return j;
+}
+
 }  // namespace
 
 std::string ReportToJson(const Report& report) {
@@ -123,6 +140,11 @@ std::string ReportToJson(const Report& report) {
     skipped.push_back(std::move(s));
   }
   j["skipped_rules"] = std::move(skipped);
+  if (!report.laydown.empty()) {  // AFP programmes only
+    Json laydown = Json::array();
+    for (const LaydownFigures& f : report.laydown) laydown.push_back(LaydownToJson(f));
+    j["laydown"] = std::move(laydown);
+  }
   // Malformed UTF-8 in a string (a programme comment, a path) becomes U+FFFD instead of
   // throwing; non-ASCII stays UTF-8 and control characters are escaped as \u00XX.
   return j.dump(2, ' ', /*ensure_ascii=*/false, Json::error_handler_t::replace) + "\n";

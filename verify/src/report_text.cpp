@@ -170,6 +170,20 @@ std::string Examples(const RuleSummary& rule) {
   return out;
 }
 
+// One line of laydown figures: "laydown ply 2: ..." or "laydown, whole programme: ...".
+std::string LaydownLine(const LaydownFigures& f) {
+  std::string out =
+      f.ply == 0 ? "laydown, whole programme: " : "laydown ply " + std::to_string(f.ply) + ": ";
+  out += FormatNumber(f.laid_path_mm) + " mm of lay-up in " + FormatNumber(f.laydown_s) +
+         " s at the feeds with the cut/add slow zones, " + FormatNumber(f.laydown_timed_s) +
+         " s with acceleration; off-part " + FormatNumber(f.off_part_s) + " s (" +
+         FormatNumber(f.off_part_timed_s) + " s timed); " + FormatNumber(f.material_kg) +
+         " kg laid, " + FormatNumber(f.rate_kg_h) + " kg/h; " + Count(f.tows_added, "tow", "tows") +
+         " added, " + std::to_string(f.tows_cut) + " cut; shortest tow piece " +
+         (f.shortest_tow_mm ? FormatNumber(*f.shortest_tow_mm) + " mm" : std::string("-"));
+  return out + "\n";
+}
+
 }  // namespace
 
 std::string ReportToText(const Report& report) {
@@ -179,6 +193,8 @@ std::string ReportToText(const Report& report) {
   for (const RuleSummary& rule : report.rules) {
     if (rule.errors > 0) out += "\n" + Examples(rule);
   }
+  if (!report.laydown.empty()) out += "\n";
+  for (const LaydownFigures& f : report.laydown) out += LaydownLine(f);
   return out;
 }
 

@@ -13,6 +13,7 @@ Verifier::Verifier(const RuleContext& ctx, bool keep_stitch_marks)
       keep_marks_(keep_stitch_marks) {
   static std::atomic<std::uint64_t> instances{0};
   instance_ = ++instances;
+  if (!ctx_.scene->head.IsStitching()) laydown_ = std::make_unique<LaydownMeter>(LaydownFor(ctx_));
 }
 
 namespace {
@@ -45,6 +46,7 @@ void Verifier::OnLine(const trace::LineRecord& line) {
   line_from_ = line.from;
   line_to_ = line.to;
   saw_input_ = true;
+  if (laydown_) laydown_->OnLine(line);
   for (auto& r : rules_) {
     r->saw_input_ = true;
     r->OnLine(line);
@@ -136,6 +138,11 @@ void Verifier::Finish(Report& report) {
     report.rules.push_back(std::move(s));
   }
   report.skipped = SkippedRules(ctx_);
+  report.laydown.clear();
+  if (laydown_) {
+    laydown_->Finish();
+    if (laydown_->SawAnything()) report.laydown = laydown_->Figures();
+  }
   report.stitches = stitches_;
   report.verdict = report.errors == 0 ? "pass" : "fail";
 }

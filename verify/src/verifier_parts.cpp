@@ -31,6 +31,7 @@ void Verifier::ResetAccumulators() {
     }
   }
   for (auto& r : rules_) r->ResetAccumulators();
+  if (laydown_) laydown_ = std::make_unique<LaydownMeter>(LaydownFor(ctx_));
   stitches_ = 0;
   // The marks' places stay (a later sample may still mark the last stitch entered).
   for (StitchMark& m : marks_) m.severity = 0;
@@ -83,8 +84,13 @@ void Verifier::Absorb(Verifier& later) {
       throw std::logic_error(mine.Summary().id + " judges the programme as a whole: " +
                              "AFP programmes are verified in one part");
   }
+  if (laydown_ && later.laydown_ && laydown_->SawAnything() && later.laydown_->SawAnything())
+    throw std::logic_error(
+        "the laydown figures judge an AFP programme whole: "
+        "AFP programmes are verified in one part");
   if (window_.Active() && later.SawAnything())
     throw std::logic_error("Verifier::Absorb: this part ends with the needles in the preform");
+  if (laydown_ && later.laydown_ && !laydown_->SawAnything()) laydown_.swap(later.laydown_);
   for (std::size_t i = 0; i < rules_.size(); ++i) {
     if (rules_[i]->Mergeable()) {
       rules_[i]->Absorb(*later.rules_[i]);

@@ -43,6 +43,17 @@ struct AfpSpec {
   double min_steering_radius_mm = 635.0;
   double layup_speed_mm_s = 200.0;
   double rapid_speed_mm_s = 500.0;
+  /// Distance from the cutter to the compaction roller's nip, mm: the shortest tow piece the
+  /// head can lay (afp.min_tow_length's limit when the scene gives none). Absent: not given.
+  std::optional<double> cut_to_roller_mm;
+  /// Shortest distance along the course between a tow's cut and its restart (add), mm.
+  /// Absent: not given.
+  std::optional<double> min_restart_mm;
+  /// Feed schedule around cuts and adds: the controller lays at most `cut_add_feed_mm_s`
+  /// (mm/s) within `cut_add_zone_mm` (mm, along the course) either side of every cut and every
+  /// add. 0 (not given): no slow-down.
+  double cut_add_feed_mm_s = 0.0;
+  double cut_add_zone_mm = 0.0;
 };
 
 /// Off-part sequencing of AFP programmes (the head's `sequence:` block; docs/sequence.md).

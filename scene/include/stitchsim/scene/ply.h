@@ -28,6 +28,19 @@ enum class PlyRule {
 /// Which offset construction fills the ply (planner/offset_curves.h).
 enum class PlyOffsetMethod { kPaper, kCorrected };
 
+/// Ply thickness and areal weight when a ply names no material: assumptions (domain.md, a
+/// typical carbon/epoxy prepreg tow; no datasheet of the scene's material is given).
+inline constexpr double kDefaultPlyThicknessMm = 0.18;
+inline constexpr double kDefaultArealWeightGM2 = 300.0;
+
+/// A material the plies are laid of (the scene's `materials:`).
+struct MaterialSpec {
+  std::string name;
+  SourceLocation where;                               ///< its entry in the scene
+  double ply_thickness_mm = kDefaultPlyThicknessMm;   ///< cured ply thickness, mm (> 0)
+  double areal_weight_g_m2 = kDefaultArealWeightGM2;  ///< fibre + resin per area, g/m^2 (> 0)
+};
+
 struct PlySpec {
   std::string name;
   SourceLocation where;  ///< the ply's entry in the scene (diagnostics name it)
@@ -56,6 +69,11 @@ struct PlySpec {
   double coverage = 0.5;
   /// Tows per course, from the head spec unless the ply narrows it (<= head tows).
   int tows = 0;
+  /// The ply's `material:` (a name among the scene's `materials:`), "" when none is given;
+  /// its thickness (mm) and areal weight (g/m^2), else the defaults above (assumptions).
+  std::string material;
+  double thickness_mm = kDefaultPlyThicknessMm;
+  double areal_weight_g_m2 = kDefaultArealWeightGM2;
 };
 
 }  // namespace stitchsim::scene

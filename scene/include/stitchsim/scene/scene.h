@@ -56,6 +56,7 @@ struct Scene {
   std::vector<PathSpec> paths;
   std::vector<PlySpec> plies;           ///< AFP plies (`plies:`), in lay-up order
   std::vector<LaminateSpec> laminates;  ///< `laminates:`; their inline plies end `plies`
+  std::vector<MaterialSpec> materials;  ///< `materials:`, in file order (the plies name them)
   double nominal_stitch_length_mm = 5.0;
   RuleLimits limits;            ///< the head's limits overridden key by key by the scene's
   double rail_offset_mm = 0.0;  ///< rail policy: carriage x minus tool x (world), preferred

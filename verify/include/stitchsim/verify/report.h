@@ -74,6 +74,26 @@ struct SkippedRule {
 
 inline constexpr std::size_t kMaxFindingsPerRule = 200;
 
+/// Laydown figures of an AFP programme (verify/laydown.h, docs/report-format.md "Laydown").
+/// One ply's, or the whole programme's.
+struct LaydownFigures {
+  int ply = 0;                   ///< M70 P<n>; 0: the whole programme
+  double laid_path_mm = 0.0;     ///< tool-point path of the lay-up runs, mm
+  double laydown_s = 0.0;        ///< lay-up runs at the programmed feeds, slow zones applied, s
+  double laydown_timed_s = 0.0;  ///< the same with the controller's ramps (RampedTime), s
+  double off_part_s = 0.0;       ///< every other motion line at its programmed speed, s
+  /// The same on the controller's time law (the trace's timed durations; the programmed
+  /// duration of a line the trace did not time), s.
+  double off_part_timed_s = 0.0;
+  double tow_length_mm = 0.0;  ///< every tow piece's length, summed, mm
+  double material_kg = 0.0;    ///< tow length x tow width x areal weight, kg
+  /// material_kg / (laydown_timed_s + off_part_timed_s) per hour, kg/h; 0 with no time.
+  double rate_kg_h = 0.0;
+  long tows_added = 0;                    ///< tow adds (a run's start counts each tow it lays)
+  long tows_cut = 0;                      ///< tow cuts (a run's end counts each tow it lays)
+  std::optional<double> shortest_tow_mm;  ///< shortest tow piece (add to cut, along x), mm
+};
+
 struct Report {
   std::string program_file;  ///< as given on the command line
   std::string scene_file;
@@ -92,6 +112,9 @@ struct Report {
   long warnings = 0;                 ///< sum over rules
   std::vector<RuleSummary> rules;    ///< in registry order
   std::vector<SkippedRule> skipped;  ///< rules that did not run, in registry order
+  /// AFP programmes: per ply (M70 P<n>, in ply order), then the whole programme (ply 0);
+  /// empty for a stitching head.
+  std::vector<LaydownFigures> laydown;
   std::string tool_version{stitchsim::ToolVersion()};  ///< stitchsim version that wrote the report
 };
 

@@ -50,6 +50,9 @@ struct RuleContext {
   /// The stitch count the programme's header declares (`stitches=N`), if it declares one:
   /// program.stitch_count checks the run makes exactly that many.
   std::optional<long> declared_stitches = std::nullopt;
+  /// The controller's acceleration ramp (the dialect's `trajectory.ramp_time_s`, docs/timing.md),
+  /// s: the laydown figures' ramps (verify/laydown.h). The time law's default when not given.
+  double ramp_time_s = 0.25;
 };
 
 /// What a rule's close-up snapshot frames (docs/report-format.md, "Snapshots"; run/close_up.h

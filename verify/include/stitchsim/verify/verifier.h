@@ -11,6 +11,7 @@
 
 #include "stitchsim/process/stitch_cycle.h"
 #include "stitchsim/trace/trace.h"
+#include "stitchsim/verify/laydown.h"
 #include "stitchsim/verify/report.h"
 #include "stitchsim/verify/rule.h"
 
@@ -105,6 +106,9 @@ class Verifier : public trace::TraceSink {
   bool saw_input_ = false;
   /// Tells this verifier's carry from any other's (see Carry, afp.* rules).
   std::uint64_t instance_;
+  /// AFP heads: the laydown figures (report.laydown); null for a stitching head. Like the
+  /// afp.* rules it judges the programme whole (AFP programmes are verified in one part).
+  std::unique_ptr<LaydownMeter> laydown_;
 };
 
 }  // namespace stitchsim::verify
