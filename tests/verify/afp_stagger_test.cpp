@@ -3,8 +3,8 @@
 // seam lies midway between its two courses' centre lines). The second ply's courses moved
 // 2 mm across put its seam 2 mm from the first's: with a 10 mm stagger offset it fires on
 // both of its lines with 2 mm (the hand difference of the centre lines); moved 12 mm it passes
-// and reads 12. A 90 deg ply between them puts the first out of a one-ply window, but not of a
-// two-ply one. Without a laminate the rule is skipped.
+// and reads 12. The window counts plies of the same angle only. Without a laminate the rule
+// is skipped.
 #include <gtest/gtest.h>
 
 #include "afp_test_support.h"
@@ -102,12 +102,31 @@ TEST(AfpStagger, APlysOuterEdgesAreNotSeams) {
   EXPECT_GT(rule->checked, 0);
 }
 
-TEST(AfpStagger, TheWindowCountsThePliesBetween) {
-  // Stack 0 deg, 90 deg, 0 deg: the upper 0 deg ply is two plies above the lower one.
-  const auto narrow = Laminate({0, 2, 1}, 1);
-  EXPECT_EQ(RuleOf(RunLines(*narrow, Programme(*narrow->surface, 2.0)), "afp.stagger")->errors, 0);
-  const auto wide = Laminate({0, 2, 1}, 2);
-  EXPECT_EQ(RuleOf(RunLines(*wide, Programme(*wide->surface, 2.0)), "afp.stagger")->errors, 2);
+TEST(AfpStagger, TheWindowCountsSameAnglePliesOnly) {
+  // Stack (0-based plies) 0, 1, 2, 3 at 0, 0, 90, 0 deg. Ply 4's seam lies 2 mm from ply 1's
+  // and 28 mm from ply 2's (ply 2 moved 30 mm); ply 2's lies 30 mm from ply 1's. The 90 deg
+  // ply between does not count: in a window of one same-angle ply, ply 4 meets ply 2 only
+  // (passes); of two, ply 1 too (fires on ply 4's two lines).
+  auto programme = [](const geom::Surface& s) {
+    auto lines = TwoCourses(s, 1, 0.0, 10);
+    for (const auto& l : TwoCourses(s, 2, 30.0, 20)) lines.push_back(l);
+    for (const auto& l : TwoCourses(s, 4, 2.0, 40)) lines.push_back(l);
+    return lines;
+  };
+  for (const int window : {1, 2}) {
+    auto scene = Laminate({0, 1, 2, 3}, window);
+    scene->plies.push_back(PlyAt(0));  // ply 4 (index 3)
+    const RuleSummary* rule = RuleOf(RunLines(*scene, programme(*scene->surface)), "afp.stagger");
+    ASSERT_NE(rule, nullptr);
+    if (window == 1) {
+      EXPECT_EQ(rule->errors, 0);
+    } else {
+      ASSERT_EQ(rule->findings.size(), 2u);
+      EXPECT_EQ(rule->findings[0].line, 40);
+      EXPECT_NEAR(rule->findings[0].value, 2.0, 1e-6);
+      EXPECT_EQ(rule->findings[0].subject, "ply 4");
+    }
+  }
 }
 
 TEST(AfpStagger, WithoutALaminateTheRuleIsSkipped) {

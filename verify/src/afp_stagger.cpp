@@ -4,12 +4,12 @@
 // (the "chimney" defect). A seam is where two courses of one ply meet: the outer boundary of a
 // course's outermost laid tow (at every sampled pose) that lies within half a tow width of
 // another course's outer boundary in the same ply. Each ply's seams are compared with those
-// of the plies of the same fibre angle among the `plies_before_repeat` plies below it in the
-// stack: every seam point must lie at least `offset` from every such seam, the distance taken
-// in space from the point to the other seam's polyline (consecutive sampled points of one
-// course edge). One finding per line (the nearest seam point it lays), naming both plies and
-// the other seam's line. Judged at the end of the programme (plies may be laid in any order);
-// skipped while the scene gives no laminate.
+// of the nearest `plies_before_repeat` plies of the same fibre angle below it in the stack
+// (plies of other angles between them do not count): every seam point must lie at least
+// `offset` from every such seam, the distance taken in space from the point to the other
+// seam's polyline (consecutive sampled points of one course edge). One finding per line (the
+// nearest seam point it lays), naming both plies and the other seam's line. Judged at the end of
+// the programme (plies may be laid in any order); skipped while the scene gives no laminate.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -139,13 +139,12 @@ class StaggerRule final : public Rule {
         const int ply = static_cast<int>(lam.stack[i].ply) + 1;
         const auto mine = seams.find(ply);
         if (mine == seams.end()) continue;
-        const std::size_t first =
-            i >= static_cast<std::size_t>(lam.stagger_plies_before_repeat)
-                ? i - static_cast<std::size_t>(lam.stagger_plies_before_repeat)
-                : 0;
-        for (std::size_t j = first; j < i; ++j) {
+        // Down the stack to the plies_before_repeat-th ply of the same angle.
+        int same = 0;
+        for (std::size_t j = i; j-- > 0 && same < lam.stagger_plies_before_repeat;) {
           const int below = static_cast<int>(lam.stack[j].ply) + 1;
           if (!SameAngle(ply, below)) continue;
+          ++same;
           const auto theirs = seams.find(below);
           if (theirs == seams.end() || theirs->second.empty()) continue;
           Compare(mine->second, theirs->second, {0.0, ply, below, 0, lam.stagger_offset_mm}, near);
