@@ -66,13 +66,26 @@ class FiberAngleRule final : public Rule {
     for (int t = 1; t <= laid_->Layout().tows; ++t) {
       if (!detail::TowLaid(line->tows, t)) continue;
       double tow_worst = -1.0;
-      for (std::size_t k = 1; k < line->poses.size(); ++k) {
-        const auto& a = line->poses[k - 1].cross;
-        const auto& b = line->poses[k].cross;
-        if (!a.ok || !b.ok) continue;
-        const Eigen::Vector2d ua = detail::TowCentreUv(a, t), ub = detail::TowCentreUv(b, t);
-        const Eigen::Vector3d n = surface.Normal(0.5 * (ua + ub)).normalized();
-        Eigen::Vector3d laid = surface.Point(ub) - surface.Point(ua);
+      // The previous pose's centre on the surface, carried: each point is evaluated once.
+      bool have_prev = false;
+      Eigen::Vector2d ua = Eigen::Vector2d::Zero();
+      Eigen::Vector3d pa = Eigen::Vector3d::Zero();
+      for (const detail::LaidPose& pose : line->poses) {
+        if (!pose.cross.ok) {
+          have_prev = false;
+          continue;
+        }
+        const Eigen::Vector2d ub = detail::TowCentreUv(pose.cross, t);
+        const Eigen::Vector3d pb = surface.Point(ub);
+        const bool have_pair = have_prev;
+        const Eigen::Vector2d u_prev = ua;
+        const Eigen::Vector3d p_prev = pa;
+        have_prev = true;
+        ua = ub;
+        pa = pb;
+        if (!have_pair) continue;
+        const Eigen::Vector3d n = surface.Normal(0.5 * (u_prev + ub)).normalized();
+        Eigen::Vector3d laid = pb - p_prev;
         laid -= laid.dot(n) * n;
         if (laid.norm() < 1e-9) continue;
         const std::optional<Eigen::Vector3d> design = DesignDirection(ply, n);
