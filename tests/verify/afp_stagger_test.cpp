@@ -116,7 +116,8 @@ TEST(AfpStagger, TheWindowCountsSameAnglePliesOnly) {
   for (const int window : {1, 2}) {
     auto scene = Laminate({0, 1, 2, 3}, window);
     scene->plies.push_back(PlyAt(0));  // ply 4 (index 3)
-    const RuleSummary* rule = RuleOf(RunLines(*scene, programme(*scene->surface)), "afp.stagger");
+    const Report report = RunLines(*scene, programme(*scene->surface));
+    const RuleSummary* rule = RuleOf(report, "afp.stagger");
     ASSERT_NE(rule, nullptr);
     if (window == 1) {
       EXPECT_EQ(rule->errors, 0);

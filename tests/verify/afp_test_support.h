@@ -94,6 +94,8 @@ inline const RuleSummary* RuleOf(const Report& r, const std::string& id) {
   }
   return nullptr;
 }
+// A temporary report would die before its rule is read (the sanitizer run caught one).
+const RuleSummary* RuleOf(Report&& r, const std::string& id) = delete;
 
 /// The figure of subject `name` of `rule` (a test failure if it has none).
 inline const SubjectFigure& SubjectOf(const RuleSummary& rule, const std::string& name) {
