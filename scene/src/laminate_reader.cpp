@@ -1,6 +1,7 @@
 #include "laminate_reader.h"
 
 #include <cmath>
+#include <map>
 #include <set>
 #include <string>
 #include <utility>
@@ -104,7 +105,7 @@ class LaminateReader {
       if (entry.IsScalar()) {
         if (auto ply = NamedPly(entry, lam.name)) {
           e.ply = *ply;
-          lam.stack.push_back(std::move(e));
+          if (ApplyEntryData(entry, e)) lam.stack.push_back(std::move(e));
         }
         continue;
       }
@@ -124,6 +125,7 @@ class LaminateReader {
         e.inline_ply = true;
         scene_.plies.push_back(std::move(*ply));
       }
+      if (!ApplyEntryData(entry, e)) continue;
       lam.stack.push_back(std::move(e));
     }
   }
@@ -165,8 +167,40 @@ class LaminateReader {
     return ok;
   }
 
+  // The entry's material and thickness onto its ply in Scene::plies (a material's data, then
+  // the entry's own thickness over it): every reader of a ply's thickness reads the ply. False
+  // (reported) for an unknown material, or a named ply stacked with two thicknesses.
+  bool ApplyEntryData(const YAML::Node& entry, const LaminateStackEntry& e) {
+    PlySpec& ply = scene_.plies[e.ply];
+    if (!e.material.empty()) {
+      const MaterialSpec* found = nullptr;
+      for (const MaterialSpec& m : scene_.materials) {
+        if (m.name == e.material) found = &m;
+      }
+      if (found == nullptr) {
+        Bad(entry["material"], "laminate stack entry names material '" + e.material +
+                                   "', not among the scene's materials");
+        return false;
+      }
+      ply.material = found->name;
+      ply.thickness_mm = found->ply_thickness_mm;
+      ply.areal_weight_g_m2 = found->areal_weight_g_m2;
+    }
+    if (e.thickness_mm) ply.thickness_mm = *e.thickness_mm;
+    const auto [it, first] = stacked_thickness_.try_emplace(e.ply, ply.thickness_mm);
+    if (!first && std::abs(it->second - ply.thickness_mm) > 1e-12) {
+      Bad(entry, "ply '" + ply.name + "' is stacked with two thicknesses (" +
+                     std::to_string(it->second) + " and " + std::to_string(ply.thickness_mm) +
+                     " mm)");
+      return false;
+    }
+    return true;
+  }
+
   YamlReader& r_;
   LengthUnit unit_;
+  /// The thickness each stacked ply was given (a named ply may be stacked more than once).
+  std::map<std::size_t, double> stacked_thickness_;
   Scene& scene_;
   /// The `plies:` entries (read before the laminates); a stack may name only these.
   const std::size_t named_plies_ = scene_.plies.size();

@@ -65,7 +65,9 @@ TEST(SceneLaminates, EveryFieldIsReadInMillimetres) {
   const testing::Loaded r =
       LoadText(LaminateScene("in", 25.4,
                              Laminate("skin", "{origin: [1, 2, 3], direction: [0, 2, 0]}",
-                                      "{offset: 0.5, plies_before_repeat: 4}", stack)));
+                                      "{offset: 0.5, plies_before_repeat: 4}", stack)) +
+               "materials: [{name: T700, ply_thickness: 0.006, areal_weight_g_m2: 310}, "
+               "{name: IM7, ply_thickness: 0.009, areal_weight_g_m2: 290}]\n");
   ASSERT_TRUE(r.scene) << r.message;
   const Scene& s = *r.scene;
   ASSERT_EQ(s.laminates.size(), 1u);
@@ -93,6 +95,14 @@ TEST(SceneLaminates, EveryFieldIsReadInMillimetres) {
   EXPECT_NEAR(*lam.stack[2].thickness_mm, 0.254, 1e-12);
   EXPECT_TRUE(lam.stack[0].material.empty());
   EXPECT_FALSE(lam.stack[0].thickness_mm);
+  // Resolved onto the plies: the material's data, the entry's thickness over it; an entry
+  // without either leaves the ply's defaults.
+  EXPECT_EQ(s.plies[lam.stack[1].ply].material, "T700");
+  EXPECT_NEAR(s.plies[lam.stack[1].ply].thickness_mm, 0.0072 * 25.4, 1e-12);
+  EXPECT_NEAR(s.plies[lam.stack[1].ply].areal_weight_g_m2, 310.0, 1e-12);
+  EXPECT_NEAR(s.plies[lam.stack[2].ply].thickness_mm, 0.254, 1e-12);
+  EXPECT_NEAR(s.plies[lam.stack[2].ply].areal_weight_g_m2, 290.0, 1e-12);
+  EXPECT_NEAR(s.plies[lam.stack[0].ply].thickness_mm, kDefaultPlyThicknessMm, 1e-12);
   // The inline 90: the rosette's reference, its angle about it, its (u, v) boundary in mm.
   const PlySpec& p90 = s.plies[lam.stack[2].ply];
   EXPECT_NEAR(p90.angle_rad, kPi / 2, 1e-12);
@@ -151,6 +161,9 @@ TEST(SceneLaminates, EveryBadLaminateIsReportedAtItsLine) {
                   "thickness: -1}\n"),
        bad, 28},
       {with_stack("\n      - p0\n      - {ply: p45, material: 'T 700'}\n"), bad, 29},
+      {with_stack("\n      - p0\n      - {ply: p45, material: T800}\n"), bad, 29},    // unknown
+      {with_stack("\n      - p45\n      - {ply: p45, thickness: 0.25}\n"), bad, 29},  // two
+
       // an inline ply's own problem is the ply reader's
       {with_stack("\n      - p0\n      - {angle_deg: 90, boundary_uv: [[0, 0], [50, 0]]}\n"),
        "scene-bad-ply", 29},

@@ -23,9 +23,12 @@ struct LaminateStackEntry {
   /// True when the ply was given inline in the stack (and appended to Scene::plies by the
   /// loader); false for a named `plies:` entry.
   bool inline_ply = false;
-  /// The material's name (`material:`), empty when not given; not yet resolved to data.
+  /// The material's name (`material:`, one of Scene::materials), empty when not given. The
+  /// loader sets the ply's material, thickness and areal weight in Scene::plies from it, and
+  /// then the thickness below over them: read a stacked ply's data from its PlySpec.
   std::string material;
-  /// The cured ply thickness (`thickness:`), mm, > 0; nullopt when not given.
+  /// The cured ply thickness (`thickness:`), mm, > 0; nullopt when not given. A named ply
+  /// stacked twice with two thicknesses is an error.
   std::optional<double> thickness_mm;
   SourceLocation where;  ///< the stack entry in the scene
 };
