@@ -90,6 +90,8 @@ planner::LocalSearchOptions LocalOptionsOf(const SequenceOptions& options,
     lo.starts = kLargeRunStarts;
     lo.stagnation = std::max(kMinRounds, kLargeRunRounds / static_cast<std::int64_t>(run_courses));
   }
+  if (options.starts > 0) lo.starts = options.starts;
+  if (options.stagnation > 0) lo.stagnation = options.stagnation;
   return lo;
 }
 

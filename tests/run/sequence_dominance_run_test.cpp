@@ -58,7 +58,10 @@ TEST(SequenceDominanceRun, BidirectionalNeverWorseOnSeed004Cases) {
       SequenceOptions o = test::SeqPlateOptions(programme, c.scene);
       o.measure = measure;
       o.return_home = true;
-      o.time_limit_s = 2.0;
+      // No time limit (a cut search may end above the forward-only answer); few rounds.
+      o.time_limit_s = 0.0;
+      o.starts = 2;
+      o.stagnation = 300;
       const SequenceInputs in = test::LoadOrFail(o);
       const SequenceRun forward = RunSequence(in, o, nullptr);
       o.bidirectional = true;

@@ -34,7 +34,11 @@ struct SequenceOptions {
   bool course_level = false;   ///< course-level precedence (a course may move to an earlier set)
   bool measure_gap = false;    ///< also solve sets of 13 to 16 courses exactly (the optimum)
   double time_limit_s = 10.0;  ///< the local search's limit per set, s (0: none)
-  int jobs = 0;      ///< threads for the local search's starts (0: the cores; same answer on any)
+  int jobs = 0;  ///< threads for the local search's starts (0: the cores; same answer on any)
+  /// The local search's starts and its stagnation cap (rounds without a cheaper answer that
+  /// end a start), per set; 0: the defaults (planner::LocalSearchOptions, the large-run rule).
+  int starts = 0;
+  std::int64_t stagnation = 0;
   std::string home;  ///< "X,Y,Z,A,B,C", part frame (mm, deg); empty: the programme's first pose
   std::string order_file;  ///< a report's "order" to lay instead of solving; empty: solve
 };
