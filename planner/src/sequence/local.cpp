@@ -55,7 +55,7 @@
 // without a given order first solves the forward-only problem (the same search, with the same
 // options, as a forward-only call), then begins its first start at that answer (the others
 // at its own construction, for variety): it can only end at or below the forward-only answer. With
-// a time limit the forward-only phase gets a third of it (then the guarantee holds only when no
+// a time limit the forward-only phase gets a tenth of it (then the guarantee holds only when no
 // limit cut either run).
 //
 // Work and memory. Up to 1,024 courses every move cost is tabled once per call ((2n)^2
@@ -527,12 +527,12 @@ SequenceSolution SolveLocalSearch(const SequenceProblem& given, const LocalSearc
   SearchSetup setup = MakeSetup(p, o, t0);
   if (p.bidirectional && o.initial.empty() && p.courses >= 2) {
     // Dominance: every forward-only order is a bidirectional one; start from the best of them.
-    // With a time limit the forward-only phase gets a third of it: the bidirectional search
+    // With a time limit the forward-only phase gets a tenth of it: the bidirectional search
     // that follows is the one that uses the freedom.
     SequenceProblem forward = p;
     forward.bidirectional = false;
     LocalSearchOptions once = o;
-    once.time_limit_s = o.time_limit_s / 3.0;
+    once.time_limit_s = o.time_limit_s / 10.0;
     const SequenceSolution first = Search(MakeSetup(forward, once, t0), once);
     BeginFirstAt(setup, first.order);
     s = Search(setup, o);
