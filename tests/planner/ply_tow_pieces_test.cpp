@@ -280,25 +280,27 @@ long ErrorsOf(const verify::Report& r, const std::string& id) {
   return -1;
 }
 
-// A 45 deg ply on a rectangle with a notch: short pieces at every corner and restarts at the
-// notch. verify's rules (their own measure, on the written text) pass the mended plan and fail
-// the plan made without the limits.
+// A 45 deg ply on a rectangle with a slot 60 mm wide: short pieces at every corner, and tows
+// crossing the slot cut and added again 85 mm on. verify's rules (their own measure, on the
+// written text) pass the mended plan and fail the plan made without the limits.
 TEST(PlyTowPieces, TheMendedPlanPassesVerifysPieceRules) {
   const std::string limits =
       "limits:\n  afp.min_tow_length: {min_mm: 100}\n  afp.restart_distance: {min_mm: 100}\n";
   const std::string boundary =
-      "[[-300, -150], [300, -150], [300, 150], [60, 150], [60, 110], [0, 110], [0, 150], "
-      "[-300, 150]]";
+      "[[-300, -150], [300, -150], [300, 250], [60, 250], [60, 20], [0, 20], [0, 250], "
+      "[-300, 250]]";
+  const std::string plane = "surface:\n  type: plane\n  size: [1600, 800]\n";
   for (const int coverage : {0, 50}) {
     SCOPED_TRACE(coverage);
     const auto dir = Folder("verify" + std::to_string(coverage));
-    std::ofstream(dir / "s.yaml") << SceneText(kPlane, Plies(boundary, coverage, "45"), limits);
+    std::ofstream(dir / "s.yaml") << SceneText(plane, Plies(boundary, coverage, "45"), limits);
     auto s = Load(dir / "s.yaml");
     ASSERT_NE(s, nullptr);
     DiagnosticSink sink;
     const auto plan = PlanPly(*s, s->plies.front(), {}, sink);
     ASSERT_TRUE(plan);
     EXPECT_GT(plan->fixes.pieces_dropped + plan->fixes.pieces_extended, 0);
+    EXPECT_GT(plan->fixes.restarts_moved + plan->fixes.restarts_bridged, 0);
     std::ostringstream text;
     WritePlyProgram(*plan, *s, program::Dialect::Default(), text);
     const verify::Report r = VerifyLines(*s, text.str());
@@ -318,7 +320,9 @@ TEST(PlyTowPieces, TheMendedPlanPassesVerifysPieceRules) {
     std::ostringstream raw;
     WritePlyProgram(*unmended, bare, program::Dialect::Default(), raw);
     s->surface = std::move(bare.surface);
-    EXPECT_GT(ErrorsOf(VerifyLines(*s, raw.str()), "afp.min_tow_length"), 0);
+    const verify::Report unmended_report = VerifyLines(*s, raw.str());
+    EXPECT_GT(ErrorsOf(unmended_report, "afp.min_tow_length"), 0);
+    EXPECT_GT(ErrorsOf(unmended_report, "afp.restart_distance"), 0);
   }
 }
 
