@@ -16,6 +16,11 @@ namespace {
 // Pieces and restarts are made this much longer than the minimum: the rules sample the
 // centre line at other points (chords a little shorter or longer than these).
 constexpr double kTowPieceMarginMm = 0.1;
+// A stretch of course this many times the limit is long enough for any tow without measuring
+// it: a tow's centre line is shorter than the course's only by its offset d across the course
+// times the course's geodesic curvature, below half only on a radius under 2 d (100 mm for
+// the 16-tow head), far under any head's steering limit (a ply-steering-radius finding).
+constexpr double kSurelyLongEnough = 2.0;
 // Rounds of mending one tow (each either changes nothing, and ends, or shortens the list or
 // a gap's shortfall).
 constexpr int kMendRounds = 64;
@@ -51,6 +56,10 @@ class TowMender {
     if (limit <= 0.0) return false;
     bool changed = false;
     for (std::size_t i = 1; i < g.size();) {
+      if (g[i].start_mm - g[i - 1].end_mm >= kSurelyLongEnough * limit) {
+        ++i;
+        continue;
+      }
       const std::optional<double> gap = GapLength(ruler_, tow_, g[i - 1], g[i]);
       if (!gap || *gap >= limit) {
         ++i;
@@ -84,6 +93,10 @@ class TowMender {
     if (limit <= 0.0) return false;
     bool changed = false;
     for (std::size_t i = 0; i < g.size();) {
+      if (g[i].end_mm - g[i].start_mm >= kSurelyLongEnough * limit) {
+        ++i;
+        continue;
+      }
       const double length = PieceLength(ruler_, tow_, g[i]);
       if (length >= limit) {
         ++i;
