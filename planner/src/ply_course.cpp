@@ -255,6 +255,11 @@ std::optional<PlyCourse> PlanCourseOn(const CourseContext& ctx, const SurfaceCur
   if (!any) return std::nullopt;
   PlyCourse course;
   course.offset_index = offset_index;
+  std::vector<double> boundary_ends;
+  for (const auto& tow : laid)
+    for (const TowSegment& g : tow)
+      boundary_ends.insert(boundary_ends.end(), {g.start_mm, g.end_mm});
+  std::sort(boundary_ends.begin(), boundary_ends.end());
   double need_mm = 0.0;
   for (int t = 1; t <= ctx.band.count; ++t) {
     MendTowPieces(ctx, b, t, laid[static_cast<std::size_t>(t - 1)], curve_can_grow, course.fixes,
@@ -267,6 +272,7 @@ std::optional<PlyCourse> PlanCourseOn(const CourseContext& ctx, const SurfaceCur
     off_surface.laying_s = off.laying_s;
     return again;
   }
+  AlignExtendedEnds(ctx, b, boundary_ends, laid);
   const std::vector<Event> events = EventsOf(ctx, laid);
   if (events.empty()) return std::nullopt;  // every piece dropped
   for (double s : PointPositions(ctx, events, samples)) {

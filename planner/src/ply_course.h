@@ -81,6 +81,16 @@ void MendTowPieces(const CourseContext& ctx, const TowRuler& ruler, int tow,
                    std::vector<TowSegment>& segments, bool curve_can_grow, TowPieceFixes& fixes,
                    double& need_mm);
 
+/// Under a coverage of 0.5 or more: the ends MendTowPieces moved past the boundary (those not
+/// in `boundary_ends`, sorted) lying within a tow width of one another along the course move to
+/// the outermost of them (adds to the first, cuts to the last) where the tow's restart distance
+/// allows: tows extended side by side start and stop together, not in steps of hundredths of a
+/// mm (a line laying part of the band there reads as a gap beside the next course's extended
+/// tows).
+void AlignExtendedEnds(const CourseContext& ctx, const TowRuler& ruler,
+                       const std::vector<double>& boundary_ends,
+                       std::vector<std::vector<TowSegment>>& laid);
+
 /// `c` continued at both ends along the surface geodesic of its end direction by `length`, in
 /// steps of at most `step` (fewer where the surface's domain ends).
 SurfaceCurve Extended(const geom::Surface& surface, const SurfaceCurve& c, double length,

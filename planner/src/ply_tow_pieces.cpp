@@ -201,6 +201,47 @@ TowReach WalkTow(const TowRuler& ruler, int tow, double from, int dir, double le
   return r;
 }
 
+void AlignExtendedEnds(const CourseContext& ctx, const TowRuler& ruler,
+                       const std::vector<double>& boundary_ends,
+                       std::vector<std::vector<TowSegment>>& laid) {
+  if (ctx.ply.coverage < 0.5) return;
+  struct End {
+    double s;
+    std::size_t tow, piece;
+  };
+  // Tow `t`'s piece `i` with the end (adds: its start) at `s`, the restart distance kept.
+  auto keeps_restart = [&](std::size_t t, std::size_t i, bool adds, double s) {
+    const auto& g = laid[t];
+    const bool has_other = adds ? i > 0 : i + 1 < g.size();
+    if (!has_other || ctx.min_restart_mm <= 0.0) return true;
+    const double a = adds ? g[i - 1].end_mm : s, b = adds ? s : g[i + 1].start_mm;
+    return b > a &&
+           TowLength(ruler, static_cast<int>(t) + 1, a, b).value_or(0.0) >= ctx.min_restart_mm;
+  };
+  for (const bool adds : {true, false}) {
+    std::vector<End> ends;
+    for (std::size_t t = 0; t < laid.size(); ++t) {
+      for (std::size_t i = 0; i < laid[t].size(); ++i) {
+        const double s = adds ? laid[t][i].start_mm : laid[t][i].end_mm;
+        if (!std::binary_search(boundary_ends.begin(), boundary_ends.end(), s))
+          ends.push_back({s, t, i});
+      }
+    }
+    std::sort(ends.begin(), ends.end(), [&](const End& x, const End& y) {
+      return adds ? x.s < y.s : x.s > y.s;  // the outermost first
+    });
+    for (std::size_t a = 0; a < ends.size();) {
+      std::size_t b = a;
+      for (; b < ends.size() && std::abs(ends[b].s - ends[a].s) < ctx.layout.width_mm; ++b) {
+        const End& e = ends[b];
+        if (!keeps_restart(e.tow, e.piece, adds, ends[a].s)) continue;
+        (adds ? laid[e.tow][e.piece].start_mm : laid[e.tow][e.piece].end_mm) = ends[a].s;
+      }
+      a = b;
+    }
+  }
+}
+
 void MendTowPieces(const CourseContext& ctx, const TowRuler& ruler, int tow,
                    std::vector<TowSegment>& segments, bool curve_can_grow, TowPieceFixes& fixes,
                    double& need_mm) {

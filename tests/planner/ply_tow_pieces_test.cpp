@@ -123,6 +123,29 @@ TEST(PlyTowPieces, AShortPieceIsExtendedAtHalfCoverageAndDroppedAtNone) {
   }
 }
 
+// Two short pieces side by side: tows 15 (centre v = 41.275) and 16 (v = 47.625) laid only in
+// a tab whose left edge runs from (-100, 38) to (-104, 52), u = -100 - 4 (v - 38) / 14, right
+// edge u = -40 (the box stops at v = 38). Tow 15: 60.936 mm from u = -100.936, extended
+// 19.582 mm each way to [-120.518, -20.418]; tow 16: 62.75 mm from -102.75, 18.675 mm each way
+// to [-121.425, -21.325]. Extended ends within a tow width of one another go together to the
+// outermost: both tows lay [-121.425, -20.418].
+TEST(PlyTowPieces, ExtendedTowsSideBySideStartAndStopTogether) {
+  const std::string slanted =
+      "[[-300, -51], [300, -51], [300, 38], [-40, 38], [-40, 52], [-104, 52], [-100, 38], "
+      "[-300, 38]]";
+  const Planned p = PlanOne("together", slanted, 50);
+  ASSERT_EQ(p.plan.courses.size(), 1u);
+  const auto odd = Odd(p.plan.courses[0]);
+  ASSERT_EQ(odd.size(), 2u);
+  for (const auto& [tow, pieces] : odd) {
+    SCOPED_TRACE(tow);
+    ASSERT_EQ(pieces.size(), 1u);
+    EXPECT_NEAR(pieces[0].first, -121.425, 0.01);
+    EXPECT_NEAR(pieces[0].second, -20.418, 0.01);
+  }
+  EXPECT_EQ(p.plan.fixes.pieces_extended, 2);
+}
+
 // A piece at the ply's end extended past the course's curve (the region ends 60.8 mm beyond
 // the ply): a 300 mm minimum makes the 60 mm piece at u in [-300, -240] reach 120.05 mm beyond
 // each end, to u = -420.05, and the course is planned again on a longer curve.
