@@ -46,6 +46,15 @@ const std::string kNotch =
     "[[-300, -51], [300, -51], [300, 52], [-40, 52], [-40, 44], [-100, 44], [-100, 52], "
     "[-300, 52]]";
 
+// Tabs over v in [38, 52] for tows 15 and 16 alone, the left edge slanted: (-100, 38) to
+// (-104, 52).
+const std::string kSlantedTab =
+    "[[-300, -51], [300, -51], [300, 38], [-40, 38], [-40, 52], [-104, 52], [-100, 38], "
+    "[-300, 38]]";
+// A 150 mm notch over u in [0, 150]: tow 16 cut at 0, added again at 150.
+const std::string kNotch150 =
+    "[[-300, -51], [300, -51], [300, 52], [150, 52], [150, 44], [0, 44], [0, 52], [-300, 52]]";
+
 struct Planned {
   std::unique_ptr<scene::Scene> scene;
   PlyPlan plan;
@@ -130,10 +139,7 @@ TEST(PlyTowPieces, AShortPieceIsExtendedAtHalfCoverageAndDroppedAtNone) {
 // to [-121.425, -21.325]. Extended ends within a tow width of one another go together to the
 // outermost: both tows lay [-121.425, -20.418].
 TEST(PlyTowPieces, ExtendedTowsSideBySideStartAndStopTogether) {
-  const std::string slanted =
-      "[[-300, -51], [300, -51], [300, 38], [-40, 38], [-40, 52], [-104, 52], [-100, 38], "
-      "[-300, 38]]";
-  const Planned p = PlanOne("together", slanted, 50);
+  const Planned p = PlanOne("together", kSlantedTab, 50);
   ASSERT_EQ(p.plan.courses.size(), 1u);
   const auto odd = Odd(p.plan.courses[0]);
   ASSERT_EQ(odd.size(), 2u);
@@ -230,10 +236,7 @@ std::vector<trace::LineRecord> Records(const std::string& text) {
 // One straight course, tow 16 cut at u = 0 and added again at u = 150 (a 150 mm notch): the
 // zones [-300, -275], [-25, 25], [125, 175], [275, 300] at 150 mm/s, the rest at 200 mm/s.
 TEST(PlyTowPieces, TheSlowZonesAreWrittenAroundEveryCutAndAdd) {
-  const std::string notch150 =
-      "[[-300, -51], [300, -51], [300, 52], [150, 52], [150, 44], [0, 44], [0, 52], "
-      "[-300, 52]]";
-  const Planned p = PlanOne("zones", notch150, 50);
+  const Planned p = PlanOne("zones", kNotch150, 50);
   ASSERT_EQ(p.plan.courses.size(), 1u);
   std::ostringstream out;
   WritePlyProgram(p.plan, *p.scene, program::Dialect::Default(), out);
