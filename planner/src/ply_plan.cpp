@@ -82,45 +82,6 @@ std::optional<SurfaceCurve> OffsetOnce(const geom::Surface& surface, const Surfa
   return side > 0 ? f.curves[1] : Reversed(f.curves[1]);
 }
 
-/// `c` continued at both ends along the surface geodesic of its end direction by `length`, in
-/// steps of at most `step` (fewer where the surface's domain ends). A course is offset from its
-/// neighbour so extended and then trimmed again: an offset's ends (one-sided tangents, and at a
-/// fibre angle, the shift of the whole curve along itself) fall outside the ply, and every
-/// course reaches across the ply however many offsets lie between it and the reference.
-SurfaceCurve Extended(const geom::Surface& surface, const SurfaceCurve& c, double length,
-                      double step) {
-  if (c.size() < 2) return c;
-  auto grow = [&](const CurvePoint& end, const CurvePoint& inner, std::vector<CurvePoint>& out) {
-    CurvePoint at = end;
-    const Eigen::Vector3d chord = end.position - inner.position;
-    if (chord.norm() <= 0) return;
-    // The curve's own direction at its end (outwards); its last chord lags half a sample's turn.
-    Eigen::Vector3d dir = end.tangent.dot(chord) >= 0 ? end.tangent : -end.tangent;
-    for (double done = 0; done < length - 1e-9;) {
-      const double h = std::min(step, length - done);
-      const geom::SurfaceFoot f = geom::WalkOnSurface(surface, at.uv, dir, h);
-      if (!f.converged || !surface.Domain().Contains(f.uv)) return;
-      CurvePoint p;
-      p.uv = f.uv;
-      p.position = f.point;
-      p.normal = surface.Normal(f.uv);
-      p.tangent = geom::Tangential(f.tangent, p.normal);
-      dir = f.tangent;  // the geodesic's own direction (a chord would turn it every step)
-      out.push_back(p);
-      at = p;
-      done += h;
-    }
-  };
-  std::vector<CurvePoint> head, tail;
-  grow(c.front(), c[1], head);
-  grow(c.back(), c[c.size() - 2], tail);
-  for (CurvePoint& p : head) p.tangent = -p.tangent;  // the curve runs the other way
-  SurfaceCurve out(head.rbegin(), head.rend());
-  out.insert(out.end(), c.begin(), c.end());
-  out.insert(out.end(), tail.begin(), tail.end());
-  return out;
-}
-
 /// The run of points inside `region` (the longest contiguous one).
 SurfaceCurve Trim(const SurfaceCurve& c, const geom::Domain2& region) {
   std::size_t best_a = 0, best_n = 0;
@@ -184,6 +145,22 @@ SurfaceCurve KeepOffsetOnSurface(const geom::Surface& surface, const SurfaceCurv
                       c.begin() + static_cast<long>(best_a + best_n));
 }
 
+/// The head's slow zone either side of each cut and add, mm (0: the head slows nowhere).
+double SlowZoneMm(const scene::Scene& scene) {
+  const scene::AfpSpec& afp = scene.head.afp;
+  return afp.cut_add_feed_mm_s > 0.0 ? afp.cut_add_zone_mm : 0.0;
+}
+
+/// The tow piece limits the rules judge with: afp.min_tow_length's (verify/src/
+/// afp_min_tow_length.cpp: the scene limit, else the head's cutter-to-roller distance) and
+/// afp.restart_distance's (the scene limit, else the head's minimum restart distance).
+void TowPieceLimits(const scene::Scene& scene, PlyPlan& plan) {
+  const std::optional<double> piece = scene.limits.Get(scene::LimitKey::kAfpMinTowLengthMm);
+  plan.min_tow_length_mm = piece.value_or(scene.head.afp.cut_to_roller_mm.value_or(0.0));
+  const std::optional<double> restart = scene.limits.Get(scene::LimitKey::kAfpRestartDistanceMm);
+  plan.min_restart_mm = restart.value_or(scene.head.afp.min_restart_mm.value_or(0.0));
+}
+
 void Summarise(PlyPlan& plan, const scene::Scene& scene) {
   const geom::Surface& surface = *scene.surface;
   std::sort(plan.courses.begin(), plan.courses.end(),
@@ -192,10 +169,12 @@ void Summarise(PlyPlan& plan, const scene::Scene& scene) {
     PlyCourse& c = plan.courses[i];
     c.number = static_cast<int>(i) + 1;
     plan.laid_length_mm += c.End() - c.Start();
+    plan.fixes += c.fixes;
     for (const PlyTow& t : c.tows) {
       plan.tow_segments += static_cast<int>(t.laid.size());
       plan.events += 2 * static_cast<int>(t.laid.size());
       plan.min_radius_mm = std::min(plan.min_radius_mm, t.min_radius_mm);
+      plan.shortest_piece_mm = std::min(plan.shortest_piece_mm, t.shortest_piece_mm);
     }
   }
   for (std::size_t i = 0; i + 1 < plan.courses.size(); ++i) {
@@ -226,7 +205,14 @@ class PlyBuilder {
         sink_(sink),
         plan_(plan),
         width_(plan.band.count * plan.layout.width_mm),
-        ctx_{surface_, ply, plan.layout, plan.band, options} {}
+        ctx_{surface_,
+             ply,
+             plan.layout,
+             plan.band,
+             options,
+             plan.min_tow_length_mm,
+             plan.min_restart_mm,
+             SlowZoneMm(scene)} {}
 
   /// The ply's region in (u, v), grown by `margin`, inside the domain.
   geom::Domain2 Within(double margin) const {
@@ -425,6 +411,7 @@ std::optional<PlyPlan> PlanPly(const scene::Scene& scene, const scene::PlySpec& 
   plan.coverage = ply.coverage;
   plan.layout = process::TowLayoutOf(scene.head);
   plan.band = process::PlyTowBand(plan.layout, ply.tows);
+  TowPieceLimits(scene, plan);
   for (std::size_t i = 0; i < scene.plies.size(); ++i)
     if (scene.plies[i].name == ply.name) plan.ply_index = static_cast<int>(i) + 1;
   PlyBuilder builder(scene, ply, options, sink, plan);

@@ -94,13 +94,29 @@ class PlyWriter {
   void Code(int m_code, std::optional<int> param, std::string comment = {}) {
     detail::WriteCode(w_, b_, m_code, param, std::move(comment));
   }
-  void Feed(const PlyPoint& p) {
+  /// A feed move to `p` at `feed_mm_s` (F only when it changes).
+  void Feed(const PlyPoint& p, double feed_mm_s) {
     b_.Clear();
     b_.motion = program::Motion::kFeed;
     pose_.Set(b_, p.tool);
-    const double feed = scene_.head.afp.layup_speed_mm_s * 60.0;
+    const double feed = feed_mm_s * 60.0;
     if (feed != feed_) b_.feed = feed_ = feed;
     w_.Write(b_);
+  }
+
+  /// The feed of the move from `a` to `b` along a course whose cuts and adds lie at `events`:
+  /// the head's slow-zone feed when the move's middle is within cut_add_zone_mm of one (the
+  /// planner puts points at the zones' edges, so a move lies wholly in or out), else the
+  /// lay-up speed; mm/s.
+  double FeedOf(const PlyPoint& a, const PlyPoint& b,
+                const std::map<double, TowCodes>& events) const {
+    const scene::AfpSpec& afp = scene_.head.afp;
+    if (afp.cut_add_feed_mm_s <= 0.0 || afp.cut_add_zone_mm <= 0.0) return afp.layup_speed_mm_s;
+    const double mid = 0.5 * (a.s_mm + b.s_mm);
+    const bool slow = std::any_of(events.begin(), events.end(), [&](const auto& e) {
+      return std::abs(mid - e.first) < afp.cut_add_zone_mm;
+    });
+    return slow ? std::min(afp.layup_speed_mm_s, afp.cut_add_feed_mm_s) : afp.layup_speed_mm_s;
   }
 
   void WriteCourse(const PlyCourse& c) {
@@ -114,7 +130,9 @@ class PlyWriter {
     // Tow numbers as the head numbers them (PlyTow::tow); P0 only when the band is the head.
     const std::uint64_t all = process::BandTows(plan_->band);
     for (const PlyPoint& p : c.points) {
-      Feed(p);
+      // The plunge onto the first point at the lay-up speed, then each move at its zone's.
+      Feed(p, &p == &c.points.front() ? scene_.head.afp.layup_speed_mm_s
+                                      : FeedOf(*(&p - 1), p, events));
       const auto it = events.find(p.s_mm);
       if (it == events.end()) continue;
       std::uint64_t cut = 0, add = 0;

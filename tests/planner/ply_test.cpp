@@ -4,7 +4,6 @@
 // programme's poses by process::TowsAt equal to the CSV; the coverage policies' boundaries.
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -12,6 +11,7 @@
 #include <map>
 #include <sstream>
 
+#include "ply_test_support.h"
 #include "stitchsim/common/units.h"
 #include "stitchsim/geom/cad_surface.h"
 #include "stitchsim/geom/polygon2.h"
@@ -27,41 +27,10 @@ namespace {
 
 namespace fs = std::filesystem;
 const fs::path kSource = STITCHSIM_SOURCE_DIR;
-
-fs::path Folder(const std::string& name) {
-  const fs::path d =
-      fs::temp_directory_path() / ("stitchsim_ply_" + std::to_string(::getpid())) / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::unique_ptr<scene::Scene> Load(const fs::path& file) {
-  DiagnosticSink sink;
-  auto s = scene::LoadScene(file, sink);
-  for (const auto& d : sink.Diagnostics()) ADD_FAILURE() << FormatDiagnostic(d);
-  return s;
-}
-
-std::string Plies(const std::string& boundary, int coverage, const std::string& angles = "0 45") {
-  std::string text = "plies:\n";
-  std::istringstream in(angles);
-  for (int a; in >> a;) {
-    text += "  - name: p" + std::to_string(a) + "\n    angle_deg: " + std::to_string(a) +
-            "\n    reference: {origin: [0, 0, 100], direction: [1, 0, 0]}\n    boundary_uv: " +
-            boundary + "\n    coverage: " + std::to_string(coverage) + "\n";
-  }
-  return text;
-}
-
-std::string SceneText(const std::string& surface, const std::string& plies) {
-  return "stitchsim_scene: 1\nname: ply_test\nunits: mm\nhead: afp\npart:\n  mount: table\n"
-         "  position: [0, -400, 50]\n" +
-         surface +
-         "preform:\n  thickness: 2\nmold:\n  depth: 40\npaths:\n  - name: row\n"
-         "    type: line\n    from: [100, 100]\n    to: [200, 100]\n" +
-         plies;
-}
+using testing::Folder;
+using testing::Load;
+using testing::Plies;
+using testing::SceneText;
 
 struct CsvRow {
   int course = 0, tow = 0;

@@ -38,7 +38,7 @@ struct PlyPlanOptions {
 /// direction, x = y cross z) and the boundaries of the ply's band of tows there
 /// (process::TowsAt with the plan's band).
 struct PlyPoint {
-  double s_mm = 0.0;  ///< course length from the course's first point
+  double s_mm = 0.0;  ///< along the course's centre curve from the curve's start, mm
   Eigen::Vector2d uv = Eigen::Vector2d::Zero();
   Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();
   /// band.count + 1 boundaries, left to right: boundary j is the left edge of head tow
@@ -55,12 +55,32 @@ struct TowSegment {
   double end_mm = 0.0;
 };
 
+/// What the planner did to the tow pieces and restarts the head cannot lay (docs/afp.md,
+/// "Short pieces and restarts"): under coverage >= 0.5 short pieces are extended past the ply
+/// boundary and close restarts bridged; below it short pieces are dropped and restarts moved.
+struct TowPieceFixes {
+  int pieces_dropped = 0;    ///< pieces shorter than the minimum left bare
+  int pieces_extended = 0;   ///< pieces lengthened to the minimum past the ply boundary
+  int restarts_bridged = 0;  ///< cuts and restarts closer than the minimum, laid through
+  int restarts_moved = 0;    ///< restarts moved on to the minimum distance from the cut
+  TowPieceFixes& operator+=(const TowPieceFixes& o) {
+    pieces_dropped += o.pieces_dropped;
+    pieces_extended += o.pieces_extended;
+    restarts_bridged += o.restarts_bridged;
+    restarts_moved += o.restarts_moved;
+    return *this;
+  }
+};
+
 struct PlyTow {
   int tow = 1;                   ///< as the head numbers it (1 leftmost), in the band
   std::vector<TowSegment> laid;  ///< in order along the course
   /// Smallest steering radius of its centre line where laid (process/afp_steering.h: the
   /// definition afp.steering_radius applies to the programme); infinity: straight or too short.
   double min_radius_mm = INFINITY;
+  /// Its shortest laid piece: the centre line's chords between the course points, mm
+  /// (infinity: nothing laid).
+  double shortest_piece_mm = INFINITY;
 };
 
 struct PlyCourse {
@@ -68,6 +88,7 @@ struct PlyCourse {
   int offset_index = 0;          ///< 0 = the reference course; > 0 to its left (N x T)
   std::vector<PlyPoint> points;  ///< centre points from the first add to the last cut
   std::vector<PlyTow> tows;      ///< every tow of the band (some may lay nothing)
+  TowPieceFixes fixes;           ///< short pieces and close restarts this course mended
   double Start() const { return points.empty() ? 0.0 : points.front().s_mm; }
   double End() const { return points.empty() ? 0.0 : points.back().s_mm; }
 };
@@ -103,6 +124,15 @@ struct PlyPlan {
   double max_gap_mm = 0.0;
   double max_overlap_mm = 0.0;
   double laid_length_mm = 0.0;  ///< sum of the courses' lay-up lengths
+  /// The head's limits the tows were planned to (mm; 0: none given): afp.min_tow_length's
+  /// (the scene limit, else the head's cut_to_roller_mm) and afp.restart_distance's (the
+  /// scene limit, else the head's min_restart_mm).
+  double min_tow_length_mm = 0.0;
+  double min_restart_mm = 0.0;
+  TowPieceFixes fixes;  ///< over all courses
+  /// Shortest tow piece laid: its centre line along the surface through the course points,
+  /// mm (infinity: none laid). Measured on the final tows.
+  double shortest_piece_mm = INFINITY;
   /// The plan's own afp.coverage figures: percent of the ply's area beyond the band of one tow
   /// width along its boundary left bare, covered twice, and laid outside the ply.
   double bare_pct = 0.0;
@@ -117,6 +147,10 @@ struct PlyPlan {
 /// whole courses when the plan without them leaves more of the ply bare than afp.coverage
 /// allows). A plan that fails afp.coverage for any other reason carries a "ply-coverage"
 /// finding: PlanPly never returns a plan without findings that its own coverage rule fails.
+/// Tow pieces shorter than the minimum tow length and restarts closer than the minimum
+/// restart distance are mended per the ply's coverage (TowPieceFixes) before the coverage is
+/// measured, and each course has points at +-cut_add_zone_mm around its cuts and adds (the
+/// head's slow zones, which WritePlyProgram writes at their feed).
 std::optional<PlyPlan> PlanPly(const scene::Scene& scene, const scene::PlySpec& ply,
                                const PlyPlanOptions& options, DiagnosticSink& sink);
 
