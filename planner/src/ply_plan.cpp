@@ -155,10 +155,8 @@ double SlowZoneMm(const scene::Scene& scene) {
 /// afp_min_tow_length.cpp: the scene limit, else the head's cutter-to-roller distance) and
 /// afp.restart_distance's (the scene limit, else the head's minimum restart distance).
 void TowPieceLimits(const scene::Scene& scene, PlyPlan& plan) {
-  const std::optional<double> piece = scene.limits.Get(scene::LimitKey::kAfpMinTowLengthMm);
-  plan.min_tow_length_mm = piece.value_or(scene.head.afp.cut_to_roller_mm.value_or(0.0));
-  const std::optional<double> restart = scene.limits.Get(scene::LimitKey::kAfpRestartDistanceMm);
-  plan.min_restart_mm = restart.value_or(scene.head.afp.min_restart_mm.value_or(0.0));
+  plan.min_tow_length_mm = scene::MinTowLengthMm(scene).value_or(0.0);
+  plan.min_restart_mm = scene::MinRestartMm(scene).value_or(0.0);
 }
 
 void Summarise(PlyPlan& plan, const scene::Scene& scene) {

@@ -123,6 +123,7 @@ TEST(AfpRestartDistance, OnACylinderTheDistanceIsItsArcRadiusTimesAngle) {
 
 TEST(AfpRestartDistance, WithoutAMinimumTheRuleIsSkippedAndSaysWhy) {
   const auto scene = AfpScene(geom::MakePlane(4000, 4000));
+  scene->head.afp.min_restart_mm.reset();  // the bundled head states 100 mm
   const Report report = RunLines(*scene, PlaneCourse(*scene->surface, kAll, kAllButTow3));
   EXPECT_EQ(RuleOf(report, kId), nullptr);
   bool named = false;
@@ -130,7 +131,8 @@ TEST(AfpRestartDistance, WithoutAMinimumTheRuleIsSkippedAndSaysWhy) {
     if (s.id != kId) continue;
     named = true;
     EXPECT_EQ(s.reason,
-              "no minimum restart distance given (limits: afp.restart_distance: {min_mm: ...})");
+              "no minimum restart distance given (limits: afp.restart_distance: {min_mm: ...}, or "
+              "the head's min_restart_mm)");
   }
   EXPECT_TRUE(named);
 }

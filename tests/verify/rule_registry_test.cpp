@@ -154,11 +154,12 @@ TEST(RuleRegistry, MadeAndSkippedRulesAreTheApplyingOnesOnceEachInEveryContext) 
           EXPECT_EQ(s.reason, "--no-collision");
         } else if (s.id == "afp.min_tow_length") {
           EXPECT_EQ(s.reason,
-                    "no minimum tow length given (limits: afp.min_tow_length: {min_mm: ...})");
+                    "no minimum tow length given (limits: afp.min_tow_length: {min_mm: ...}, or "
+                    "the head's cut_to_roller_mm)");
         } else if (s.id == "afp.restart_distance") {
           EXPECT_EQ(s.reason,
                     "no minimum restart distance given (limits: afp.restart_distance: {min_mm: "
-                    "...})");
+                    "...}, or the head's min_restart_mm)");
         } else if (s.id == "afp.stagger") {
           EXPECT_TRUE(c.loaded.scene->laminates.empty());
           EXPECT_EQ(s.reason, "no laminate in the scene (laminates:)");
@@ -203,6 +204,32 @@ TEST(RuleRegistry, TwoContextsListedByHand) {
   afp.cell.payload_rated_kg = 20.0;
   afp.loaded.scene->head.inertial = FiveKilograms();
   afp.declared = 40;  // no program.stitch_count for a head that does not stitch
+  // The head states its cutter-to-roller and restart distances: both rules run, after
+  // afp.coverage.
+  EXPECT_EQ(IdsOf(MakeRules(afp.Rules())), (std::vector<std::string>{"afp.steering_radius",
+                                                                     "afp.gap",
+                                                                     "afp.overlap",
+                                                                     "afp.compaction",
+                                                                     "afp.coverage",
+                                                                     "afp.min_tow_length",
+                                                                     "afp.restart_distance",
+                                                                     "afp.fiber_angle",
+                                                                     "kin.reach",
+                                                                     "kin.joint_limit",
+                                                                     "kin.singularity",
+                                                                     "kin.config_flip",
+                                                                     "kin.joint_speed",
+                                                                     "kin.acceleration",
+                                                                     "kin.torque",
+                                                                     "kin.payload",
+                                                                     "program.sync",
+                                                                     "program.line_sampling",
+                                                                     "collision.head_mold",
+                                                                     "collision.robot_cell",
+                                                                     "collision.clearance"}));
+  // A head without them: skipped.
+  afp.loaded.scene->head.afp.cut_to_roller_mm.reset();
+  afp.loaded.scene->head.afp.min_restart_mm.reset();
   const RuleContext actx = afp.Rules();
   EXPECT_EQ(IdsOf(MakeRules(actx)),
             (std::vector<std::string>{
@@ -214,7 +241,7 @@ TEST(RuleRegistry, TwoContextsListedByHand) {
   EXPECT_EQ(
       IdsOf(SkippedRules(actx)),
       (std::vector<std::string>{"afp.min_tow_length", "afp.restart_distance", "afp.stagger"}));
-  // With a minimum tow length and restart distance given, they run after afp.coverage.
+  // With a minimum tow length and restart distance given in the scene, they run again.
   afp.loaded.scene->limits.Set(scene::LimitKey::kAfpMinTowLengthMm, 100.0);
   afp.loaded.scene->limits.Set(scene::LimitKey::kAfpRestartDistanceMm, 80.0);
   const std::vector<std::string> with_minimum = IdsOf(MakeRules(afp.Rules()));

@@ -1,7 +1,8 @@
 // afp.min_tow_length: every tow piece the programme lays against the shortest piece the head
 // can lay, the distance from its cutter to the compaction roller (docs/report-format.md, the
 // afp.* rules; issue 29): a tow added closer than that before its cut is cut before it reaches
-// the roller. Skipped while no minimum is given (the bundled heads give none yet).
+// the roller. The minimum: scene::MinTowLengthMm (the scene's limit, else the head's); skipped
+// while neither is given.
 // A piece is one tow followed from line to line of a course while its centre line continues
 // (as afp.steering_radius follows it); its length is the centre line's along the surface, the
 // sum of chords at most half a tow width long. A cut, another course or a line that lays
@@ -23,12 +24,6 @@
 namespace stitchsim::verify {
 namespace {
 
-// The scene's limit (afp.min_tow_length min_mm), else the head's cutter-to-roller distance.
-std::optional<double> MinTowLength(const RuleContext& ctx) {
-  const std::optional<double> given = ctx.scene->limits.Get(scene::LimitKey::kAfpMinTowLengthMm);
-  return given ? given : ctx.scene->head.afp.cut_to_roller_mm;
-}
-
 using detail::LaidLine;
 
 class MinTowLengthRule final : public Rule {
@@ -41,7 +36,8 @@ class MinTowLengthRule final : public Rule {
              "mm"),
         laid_(std::move(laid)),
         tows_(static_cast<std::size_t>(laid_->Layout().tows) + 1) {
-    summary_.error_limit = MinTowLength(ctx);  // given (the entry skips the rule otherwise)
+    summary_.error_limit =
+        scene::MinTowLengthMm(*ctx.scene);  // given (the entry skips the rule otherwise)
     worst_is_smallest_ = true;
     mergeable_ = false;  // a piece runs over many lines (Rule::Mergeable)
     for (int t = 1; t <= laid_->Layout().tows; ++t) {
@@ -140,8 +136,9 @@ RuleEntry AfpMinTowLengthRuleEntry() {
   return {"afp.min_tow_length", CloseUpFamily::kNone,
           [](const RuleContext& ctx) {
             return detail::RunsWhenLayingWithLimit(
-                ctx, scene::LimitKey::kAfpMinTowLengthMm,
-                "no minimum tow length given (limits: afp.min_tow_length: {min_mm: ...})");
+                ctx, scene::MinTowLengthMm(*ctx.scene),
+                "no minimum tow length given (limits: afp.min_tow_length: {min_mm: ...}, or the "
+                "head's cut_to_roller_mm)");
           },
           detail::MakeLaying<MinTowLengthRule>};
 }

@@ -1,7 +1,7 @@
 // afp.restart_distance: every tow the programme adds again within a course against the
 // shortest distance the head must travel between cutting a tow and adding it again
-// (docs/report-format.md, the afp.* rules; issue 29). Skipped while no minimum is given (the
-// bundled heads give none yet).
+// (docs/report-format.md, the afp.* rules; issue 29). The minimum: scene::MinRestartMm (the
+// scene's limit, else the head's); skipped while neither is given.
 // The distance is the tow's centre line along the surface, from the last point laid before the
 // cut to the first point laid at the re-add, followed over the lines in between at their
 // sampled poses (at most half a tow width apart: the chords of afp_laid.h; a line that lays no
@@ -34,7 +34,7 @@ class RestartDistanceRule final : public Rule {
              "mm"),
         laid_(std::move(laid)),
         tows_(static_cast<std::size_t>(laid_->Layout().tows) + 1) {
-    summary_.error_limit = ctx.scene->limits.Get(scene::LimitKey::kAfpRestartDistanceMm);
+    summary_.error_limit = scene::MinRestartMm(*ctx.scene);
     worst_is_smallest_ = true;
     mergeable_ = false;  // a cut and its re-add lie on different lines (Rule::Mergeable)
     for (int t = 1; t <= laid_->Layout().tows; ++t) {
@@ -137,9 +137,9 @@ RuleEntry AfpRestartDistanceRuleEntry() {
   return {"afp.restart_distance", CloseUpFamily::kNone,
           [](const RuleContext& ctx) {
             return detail::RunsWhenLayingWithLimit(
-                ctx, scene::LimitKey::kAfpRestartDistanceMm,
+                ctx, scene::MinRestartMm(*ctx.scene),
                 "no minimum restart distance given (limits: afp.restart_distance: {min_mm: "
-                "...})");
+                "...}, or the head's min_restart_mm)");
           },
           detail::MakeLaying<RestartDistanceRule>};
 }

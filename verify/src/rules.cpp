@@ -89,10 +89,10 @@ RulePresence RunsWhenLaying(const RuleContext& ctx) {
   return RulePresence::RunsIf(!ctx.scene->head.IsStitching());
 }
 
-RulePresence RunsWhenLayingWithLimit(const RuleContext& ctx, scene::LimitKey key,
+RulePresence RunsWhenLayingWithLimit(const RuleContext& ctx, std::optional<double> limit,
                                      const char* missing) {
   if (ctx.scene->head.IsStitching()) return RulePresence::Absent();
-  if (!ctx.scene->limits.Get(key)) return RulePresence::Skipped(missing);
+  if (!limit) return RulePresence::Skipped(missing);
   return RulePresence::Runs();
 }
 

@@ -36,9 +36,9 @@ RulePresence RunsAlways(const RuleContext& ctx);
 RulePresence RunsWhenStitching(const RuleContext& ctx);
 /// Runs with an AFP head, absent with a stitching head.
 RulePresence RunsWhenLaying(const RuleContext& ctx);
-/// Runs with an AFP head when the scene gives limit `key`; skipped with `missing` as the
-/// reason when it does not; absent with a stitching head.
-RulePresence RunsWhenLayingWithLimit(const RuleContext& ctx, scene::LimitKey key,
+/// Runs with an AFP head when `limit` is given (the scene's or the head's); skipped with
+/// `missing` as the reason when it is not; absent with a stitching head.
+RulePresence RunsWhenLayingWithLimit(const RuleContext& ctx, std::optional<double> limit,
                                      const char* missing);
 
 /// The factory of an afp.* rule constructed from the context and the shared sampler.

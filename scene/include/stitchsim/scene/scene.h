@@ -94,4 +94,12 @@ inline constexpr CellFixture kCellFixtures[] = {{"table", "table"}, {"rotator", 
 std::unique_ptr<Scene> LoadScene(const std::filesystem::path& file, DiagnosticSink& sink,
                                  const LoadOptions& options = {});
 
+/// The shortest tow piece the cell may lay, mm: the scene's `afp.min_tow_length` limit, else
+/// the head's cutter-to-roller distance; nullopt when neither is given. The ply planner mends
+/// pieces to it and afp.min_tow_length judges against it.
+std::optional<double> MinTowLengthMm(const Scene& scene);
+/// The shortest distance from a tow's cut to its restart, mm: the scene's
+/// `afp.restart_distance` limit, else the head's `min_restart_mm`; nullopt when neither.
+std::optional<double> MinRestartMm(const Scene& scene);
+
 }  // namespace stitchsim::scene
