@@ -3,6 +3,8 @@
 #include <cassert>
 #include <cstdio>
 
+#include "stitchsim/scene/scene.h"
+
 namespace stitchsim::scene {
 namespace {
 
@@ -191,6 +193,16 @@ double RuleLimits::Value(LimitKey key) const {
   const std::optional<double> v = Get(key);
   assert(v && "Value() of a limit key without a default; use Get()");
   return v.value_or(0.0);
+}
+
+std::optional<double> MinTowLengthMm(const Scene& scene) {
+  const std::optional<double> given = scene.limits.Get(LimitKey::kAfpMinTowLengthMm);
+  return given ? given : scene.head.afp.cut_to_roller_mm;
+}
+
+std::optional<double> MinRestartMm(const Scene& scene) {
+  const std::optional<double> given = scene.limits.Get(LimitKey::kAfpRestartDistanceMm);
+  return given ? given : scene.head.afp.min_restart_mm;
 }
 
 }  // namespace stitchsim::scene

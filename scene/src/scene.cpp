@@ -592,14 +592,4 @@ std::unique_ptr<Scene> LoadScene(const std::filesystem::path& file, DiagnosticSi
   return SceneLoader(file, sink, options).Load();
 }
 
-std::optional<double> MinTowLengthMm(const Scene& scene) {
-  const std::optional<double> given = scene.limits.Get(LimitKey::kAfpMinTowLengthMm);
-  return given ? given : scene.head.afp.cut_to_roller_mm;
-}
-
-std::optional<double> MinRestartMm(const Scene& scene) {
-  const std::optional<double> given = scene.limits.Get(LimitKey::kAfpRestartDistanceMm);
-  return given ? given : scene.head.afp.min_restart_mm;
-}
-
 }  // namespace stitchsim::scene
