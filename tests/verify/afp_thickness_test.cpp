@@ -108,11 +108,35 @@ TEST(AfpThickness, NPliesReadNTimesTheirThicknessAndAPadUpItsStep) {
   EXPECT_NEAR(map->lo_uv.y(), -50.8, 2.0);
 }
 
+TEST(AfpThickness, ATowOverlappingAnotherOfItsPlyCountsOnce) {
+  auto scene = Plate(2);
+  scene->limits.Set(scene::LimitKey::kAfpCompactionMaxPressMm, 0.1);
+  scene->limits.Set(scene::LimitKey::kAfpCompactionMaxLiftMm, 0.1);
+  const geom::Surface& s = *scene->surface;
+  const Eigen::Vector2d x(1, 0);
+  // Ply 1: two courses on the bare tool, the second 8 tows over (half of it on the first).
+  auto shifted = [&](int line, int course, int ply, double lift) {
+    return LayLine(line, ToolAt(s, {0, 8 * testing::kTowWidth}, x, lift),
+                   ToolAt(s, {300, 8 * testing::kTowWidth}, x, lift), testing::kAllTows, course,
+                   ply);
+  };
+  const Verified run = Verify(
+      *scene, {Course(s, 10, 1, 0, 300, 0.0), shifted(11, 2, 1, 0.0), shifted(20, 1, 2, kT)});
+  EXPECT_NEAR(*PlyFigures(run.report, 1).thickness_max_mm, kT, 1e-9);
+  EXPECT_NEAR(*PlyFigures(run.report, 1).thickness_min_mm, kT, 1e-9);
+  EXPECT_NEAR(*PlyFigures(run.report, 2).thickness_max_mm, 2 * kT, 1e-9);
+  // Ply 1's second course lies on the bare tool, ply 2 on the one ply below: no finding.
+  const RuleSummary* rule = RuleOf(run.report, "afp.compaction");
+  ASSERT_NE(rule, nullptr);
+  EXPECT_EQ(rule->errors, 0);
+}
+
 TEST(AfpThickness, APlyPlannedOnTheBareToolUnderAnEarlierPlyPressesByItsThickness) {
   auto scene = Plate(2);
   scene->limits.Set(scene::LimitKey::kAfpCompactionMaxPressMm, 0.1);
   const geom::Surface& s = *scene->surface;
-  const Verified run = Verify(*scene, {Course(s, 10, 1, 0, 300, 0.0), Course(s, 20, 2, 0, 300, 0.0)});
+  const Verified run =
+      Verify(*scene, {Course(s, 10, 1, 0, 300, 0.0), Course(s, 20, 2, 0, 300, 0.0)});
   const RuleSummary* rule = RuleOf(run.report, "afp.compaction");
   ASSERT_NE(rule, nullptr);
   ASSERT_EQ(rule->findings.size(), 1U);
@@ -137,7 +161,8 @@ TEST(AfpThickness, ARollerLiftedByAMissingPlyFiresAndTheRaisedPlyPasses) {
   EXPECT_EQ(rule->findings[0].subject, "lift");
   EXPECT_NEAR(rule->findings[0].value, kT / 0.1 * 100.0, 1e-6);
   // Ply 1 laid first: ply 2 at +t sits on it.
-  const Verified raised = Verify(*scene, {Course(s, 10, 1, 0, 300, 0.0), Course(s, 20, 2, 0, 300, kT)});
+  const Verified raised =
+      Verify(*scene, {Course(s, 10, 1, 0, 300, 0.0), Course(s, 20, 2, 0, 300, kT)});
   const RuleSummary* clean = RuleOf(raised.report, "afp.compaction");
   ASSERT_NE(clean, nullptr);
   EXPECT_EQ(clean->errors, 0);
@@ -145,7 +170,7 @@ TEST(AfpThickness, ARollerLiftedByAMissingPlyFiresAndTheRaisedPlyPasses) {
   // Ply 1 over u 0..150; ply 2 on it to its end (the edge within a cell reads both sides),
   // then beyond it from u 160: only that line lifts, by t.
   const Verified half = Verify(*scene, {Course(s, 10, 1, 0, 150, 0.0), Course(s, 20, 2, 0, 150, kT),
-                                   Course(s, 21, 2, 160, 300, kT)});
+                                        Course(s, 21, 2, 160, 300, kT)});
   const RuleSummary* part = RuleOf(half.report, "afp.compaction");
   ASSERT_NE(part, nullptr);
   ASSERT_EQ(part->findings.size(), 1U);
@@ -158,9 +183,10 @@ TEST(AfpThickness, ACourseTurnedFourDegreesIsItsPlysWorstFibreAngleAndOnTheMap) 
   const geom::Surface& s = *scene->surface;
   const double a = DegToRad(4.0);
   const Eigen::Vector2d dir(std::cos(a), std::sin(a));
-  const Verified run = Verify(*scene, {Course(s, 10, 1, 0, 300, 0.0),
-                                  LayLine(20, ToolAt(s, {0, 0}, dir, kT),
-                                          ToolAt(s, 200 * dir, dir, kT), testing::kAllTows, 1, 2)});
+  const Verified run =
+      Verify(*scene, {Course(s, 10, 1, 0, 300, 0.0),
+                      LayLine(20, ToolAt(s, {0, 0}, dir, kT), ToolAt(s, 200 * dir, dir, kT),
+                              testing::kAllTows, 1, 2)});
   ASSERT_TRUE(PlyFigures(run.report, 1).worst_fiber_angle_deg);
   EXPECT_NEAR(*PlyFigures(run.report, 1).worst_fiber_angle_deg, 0.0, 1e-9);
   ASSERT_TRUE(PlyFigures(run.report, 2).worst_fiber_angle_deg);
