@@ -16,7 +16,8 @@ namespace stitchsim::run {
 namespace {
 
 constexpr int kMapSide = 900;  // the map's longer side on the picture, pixels
-constexpr int kLeft = 90, kRight = 170, kBottom = 70, kGap = 24;
+constexpr int kLeft = 90, kRight = 170, kBottom = 70, kGap = 40;
+constexpr int kMinWidth = 1000;  // the title bar needs this much
 constexpr render::Rgb kInk = {30, 30, 30};
 
 // A perceptually ordered ramp (viridis' ends and three stops between), t in [0, 1].
@@ -74,7 +75,7 @@ render::Image Picture(const verify::LaminateMap& map, const render::SnapshotFont
   const int scale = std::max(1, kMapSide / std::max(map.width, map.height));
   const int mw = map.width * scale, mh = map.height * scale;
   render::Image img;
-  img.width = kLeft + mw + kRight;
+  img.width = std::max(kMinWidth, kLeft + mw + kRight);
   img.height = 0;
   {  // the title bar's height first, on a scratch picture as wide
     render::Image probe{img.width, 200, std::vector<std::uint8_t>(img.width * 600, 255)};
@@ -118,20 +119,22 @@ render::Image Picture(const verify::LaminateMap& map, const render::SnapshotFont
   render::DrawText(img, f, 4, top - kGap / 2 + f.Ascender() / 2, "v (mm)", kInk);
   // The colour scale: bottom lo, top hi, ticks and the unit.
   const int bx = x0 + mw + 30, bw = 22;
+  const bool uniform = !(map.max_value > map.min_value);
   for (int y = 0; y < mh; ++y) {
-    Fill(img, bx, top + y, bx + bw, top + y + 1, Ramp(1.0 - (y + 0.5) / mh));
+    Fill(img, bx, top + y, bx + bw, top + y + 1, Ramp(uniform ? 0.0 : 1.0 - (y + 0.5) / mh));
   }
   Fill(img, bx - 1, top - 1, bx + bw + 1, top, kInk);
   Fill(img, bx - 1, top + mh, bx + bw + 1, top + mh + 1, kInk);
-  auto bar_label = [&](double v) {
-    const int y = top + mh - static_cast<int>(std::lround((v - lo) / (hi - lo) * mh));
+  auto bar_label = [&](double v, int y) {
     Fill(img, bx + bw, y, bx + bw + 6, y + 1, kInk);
     render::DrawText(img, f, bx + bw + 9, y + f.Ascender() / 2, Number(v), kInk);
   };
-  if (map.max_value > map.min_value) {
-    Ticks(lo, hi, 6, bar_label);
+  if (uniform) {
+    bar_label(lo, top + mh / 2);  // one value everywhere: one colour, one number
   } else {
-    bar_label(lo);  // one value everywhere
+    Ticks(lo, hi, 6, [&](double v) {
+      bar_label(v, top + mh - static_cast<int>(std::lround((v - lo) / (hi - lo) * mh)));
+    });
   }
   render::DrawText(img, f, bx, top - kGap / 2 + f.Ascender() / 2, map.unit, kInk);
   return img;
