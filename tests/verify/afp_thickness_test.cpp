@@ -148,6 +148,29 @@ TEST(AfpThickness, APlyPlannedOnTheBareToolUnderAnEarlierPlyPressesByItsThicknes
   EXPECT_NE(f.message.find("0.18 mm"), std::string::npos) << f.message;
 }
 
+// At the default limits (press 1 mm, lift 0.25 mm; plies of 0.18 mm) a ply planned on the bare
+// tool fires once more than 5 plies lie below it (6 x 0.18 = 1.08 mm), not under 5 (0.9 mm).
+TEST(AfpThickness, AtTheDefaultLimitsTheBareToolFiresUnderSixPlies) {
+  for (const int below : {5, 6}) {
+    auto scene = Plate(below + 1);
+    const geom::Surface& s = *scene->surface;
+    std::vector<trace::LineRecord> lines;
+    for (int k = 1; k <= below; ++k) lines.push_back(Course(s, 10 * k, k, 0, 300, (k - 1) * kT));
+    lines.push_back(Course(s, 100, below + 1, 0, 300, 0.0));  // on the bare tool
+    const Verified run = Verify(*scene, lines);
+    const RuleSummary* rule = RuleOf(run.report, "afp.compaction");
+    ASSERT_NE(rule, nullptr);
+    EXPECT_NEAR(*testing::SubjectOf(*rule, "press").worst_value, below * kT / 1.0 * 100.0, 1e-6);
+    if (below == 5) {
+      EXPECT_EQ(rule->errors, 0);
+    } else {
+      ASSERT_EQ(rule->findings.size(), 1U);
+      EXPECT_EQ(rule->findings[0].line, 100);
+      EXPECT_NEAR(rule->findings[0].value, 108.0, 1e-6);
+    }
+  }
+}
+
 TEST(AfpThickness, ARollerLiftedByAMissingPlyFiresAndTheRaisedPlyPasses) {
   auto scene = Plate(2);
   scene->limits.Set(scene::LimitKey::kAfpCompactionMaxLiftMm, 0.1);
