@@ -23,20 +23,26 @@ bool InQuad(const std::array<Eigen::Vector2d, 4>& q, const Eigen::Vector2d& p) {
 
 }  // namespace
 
-CoverageMap::CoverageMap(const geom::Surface& surface, const Eigen::Vector2d& lo_uv,
-                         const Eigen::Vector2d& hi_uv, double max_cell, std::size_t max_cells)
-    : surface_(&surface) {
+CoverageGrid GridOver(const Eigen::Vector2d& lo_uv, const Eigen::Vector2d& hi_uv, double max_cell,
+                      std::size_t max_cells) {
+  CoverageGrid grid;
   const Eigen::Vector2d size = (hi_uv - lo_uv).cwiseMax(1e-9);
   double cell = max_cell;
   const double wanted = std::ceil(size.x() / cell) * std::ceil(size.y() / cell);
   if (wanted > static_cast<double>(max_cells)) {
     cell = std::sqrt(size.x() * size.y() / static_cast<double>(max_cells)) * 1.01;
-    grid_.coarsened = true;
+    grid.coarsened = true;
   }
-  grid_.origin_uv = lo_uv;
-  grid_.nu = std::max(1, static_cast<int>(std::ceil(size.x() / cell - 1e-9)));
-  grid_.nv = std::max(1, static_cast<int>(std::ceil(size.y() / cell - 1e-9)));
-  grid_.cell_uv = Eigen::Vector2d(cell, cell);
+  grid.origin_uv = lo_uv;
+  grid.nu = std::max(1, static_cast<int>(std::ceil(size.x() / cell - 1e-9)));
+  grid.nv = std::max(1, static_cast<int>(std::ceil(size.y() / cell - 1e-9)));
+  grid.cell_uv = Eigen::Vector2d(cell, cell);
+  return grid;
+}
+
+CoverageMap::CoverageMap(const geom::Surface& surface, const Eigen::Vector2d& lo_uv,
+                         const Eigen::Vector2d& hi_uv, double max_cell, std::size_t max_cells)
+    : surface_(&surface), grid_(GridOver(lo_uv, hi_uv, max_cell, max_cells)) {
   const std::size_t n = static_cast<std::size_t>(grid_.nu) * static_cast<std::size_t>(grid_.nv);
   counts_.assign(n, 0);
   in_course_.assign(n, 0);
@@ -53,24 +59,36 @@ double CoverageMap::CellArea(int iu, int iv) const {
   return j.col(0).cross(j.col(1)).norm() * grid_.cell_uv.x() * grid_.cell_uv.y();
 }
 
-void CoverageMap::PaintQuad(const std::array<Eigen::Vector2d, 4>& quad_uv, int source_line) {
+void CellsInQuad(const CoverageGrid& grid, const std::array<Eigen::Vector2d, 4>& quad_uv,
+                 std::vector<std::size_t>& cells) {
+  cells.clear();
   Eigen::Vector2d lo = quad_uv[0], hi = quad_uv[0];
   for (const auto& p : quad_uv) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  const Eigen::Vector2d a = (lo - grid_.origin_uv).cwiseQuotient(grid_.cell_uv);
-  const Eigen::Vector2d b = (hi - grid_.origin_uv).cwiseQuotient(grid_.cell_uv);
+  const Eigen::Vector2d a = (lo - grid.origin_uv).cwiseQuotient(grid.cell_uv);
+  const Eigen::Vector2d b = (hi - grid.origin_uv).cwiseQuotient(grid.cell_uv);
   const int iu0 = std::max(0, static_cast<int>(std::floor(a.x() - 0.5)));
   const int iv0 = std::max(0, static_cast<int>(std::floor(a.y() - 0.5)));
-  const int iu1 = std::min(grid_.nu - 1, static_cast<int>(std::ceil(b.x())));
-  const int iv1 = std::min(grid_.nv - 1, static_cast<int>(std::ceil(b.y())));
+  const int iu1 = std::min(grid.nu - 1, static_cast<int>(std::ceil(b.x())));
+  const int iv1 = std::min(grid.nv - 1, static_cast<int>(std::ceil(b.y())));
   for (int iv = iv0; iv <= iv1; ++iv) {
     for (int iu = iu0; iu <= iu1; ++iu) {
-      if (!InQuad(quad_uv, CellCentre(iu, iv))) continue;
-      const std::size_t k = Index(iu, iv);
-      lines_[k] = source_line;
-      if (in_course_[k] != 0) continue;
-      in_course_[k] = 1;
-      course_cells_.push_back(static_cast<std::uint32_t>(k));
+      const Eigen::Vector2d centre =
+          grid.origin_uv +
+          Eigen::Vector2d((iu + 0.5) * grid.cell_uv.x(), (iv + 0.5) * grid.cell_uv.y());
+      if (!InQuad(quad_uv, centre)) continue;
+      cells.push_back(static_cast<std::size_t>(iv) * static_cast<std::size_t>(grid.nu) +
+                      static_cast<std::size_t>(iu));
     }
+  }
+}
+
+void CoverageMap::PaintQuad(const std::array<Eigen::Vector2d, 4>& quad_uv, int source_line) {
+  CellsInQuad(grid_, quad_uv, quad_cells_);
+  for (const std::size_t k : quad_cells_) {
+    lines_[k] = source_line;
+    if (in_course_[k] != 0) continue;
+    in_course_[k] = 1;
+    course_cells_.push_back(static_cast<std::uint32_t>(k));
   }
 }
 

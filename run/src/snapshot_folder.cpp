@@ -250,6 +250,7 @@ Status WriteSnapshotFolder(const SnapshotInputs& in, const std::string& folder,
     return Status::Error("io-missing-file", "snapshots: " + error);
   }
   if (Status st = WriteAfpCoverageSnapshots(*in.verifier, folder); !st.ok) return st;
+  if (Status st = WriteAfpLaminateSnapshots(*in.verifier, folder); !st.ok) return st;
   if (Status st = WriteOverview(in, overview_fonts, dir, sink); !st.ok) return st;
   nlohmann::json manifest;
   manifest["overview"] = "overview.png";

@@ -94,9 +94,10 @@ constexpr LimitSpec kTable[] = {
     {K::kAfpOverlapMaxMm, "afp.overlap", "max_mm", U::kMm, 0.76, false,
      "largest overlap of neighbouring courses of a ply (0.03 in)"},
     {K::kAfpCompactionMaxLiftMm, "afp.compaction", "max_lift_mm", U::kMm, 0.25, false,
-     "tool point (roller contact) above the surface while laying"},
+     "tool point (roller contact) above the laid surface (the tool raised by the plies below) "
+     "while laying"},
     {K::kAfpCompactionMaxPressMm, "afp.compaction", "max_press_mm", U::kMm, 1.0, false,
-     "tool point below the surface while laying (roller compliance)"},
+     "tool point below the laid surface while laying (roller compliance)"},
     {K::kAfpCompactionMaxRollDeg, "afp.compaction", "max_roll_deg", U::kDeg, 2.0, false,
      "roller axis (tool x) out of the tangent plane while laying"},
     {K::kAfpCompactionMaxLeanDeg, "afp.compaction", "max_lean_deg", U::kDeg, 15.0, false,

@@ -212,6 +212,10 @@ TEST(Snapshots, ConcaveCylinderShowsTheFeedModuleInTheMold) {
   EXPECT_EQ(seen[0], "head:feed_module");
   ExpectTitleBar(dir / "collision.head_mold.png");
   ExpectTitleBar(dir / "overview.png");
+  // The laminate's thickness map (the course's ply is not one of the scene's: it lays no
+  // thickness, and afp.fiber_angle does not judge it, so no angle map).
+  ExpectTitleBar(dir / "laminate_thickness.png");
+  EXPECT_FALSE(fs::exists(dir / "laminate_fiber_angle.png"));
 }
 
 TEST(Snapshots, CoupledCircleShowsTheNeedles) {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -74,8 +75,10 @@ inline trace::LineRecord LayLine(int line, const Eigen::Isometry3d& from,
   return l;
 }
 
-/// Runs the verifier over `lines` (no samples: the afp.* rules read lines).
-inline Report RunLines(const scene::Scene& scene, const std::vector<trace::LineRecord>& lines) {
+/// Runs the verifier over `lines` (no samples: the afp.* rules read lines); `then`, when
+/// given, reads the finished verifier.
+inline Report RunLines(const scene::Scene& scene, const std::vector<trace::LineRecord>& lines,
+                       const std::function<void(const Verifier&)>& then = {}) {
   const process::ProcessModel model = process::MakeProcessModel(scene, 5.0);
   trace::CellDescription cell;
   cell.lower_limits.setConstant(-10.0);
@@ -85,6 +88,7 @@ inline Report RunLines(const scene::Scene& scene, const std::vector<trace::LineR
   for (const auto& l : lines) v.OnLine(l);
   Report r;
   v.Finish(r);
+  if (then) then(v);
   return r;
 }
 

@@ -1,5 +1,6 @@
 // afp.compaction: how the compaction roller stands on the surface at every laying pose: the
-// tool point on the surface (its distance along the normal from its foot: above = lift, below
+// tool point on the laid surface (its distance along the normal from its foot, less the
+// thickness the programme's earlier plies laid there (afp_thickness.h): above = lift, below
 // = press), the roller axis (tool x) in the tangent plane (roll) and the head axis leaning
 // along the travel (tool y out of the tangent plane: seed 003's inclined pressure). Each of
 // the four is a subject with its own limit; the rule's figures are percent of the limit, the
@@ -12,6 +13,8 @@
 #include <string>
 
 #include "afp_laid.h"
+#include "afp_thickness.h"
+#include "afp_value_grid.h"
 #include "detail/rule_registry.h"
 #include "stitchsim/common/units.h"
 
@@ -28,11 +31,26 @@ struct Measure {
 };
 
 constexpr std::array<Measure, 4> kMeasures = {{
-    {"lift", "mm", "tool point above the surface by", LimitKey::kAfpCompactionMaxLiftMm},
-    {"press", "mm", "tool point below the surface by", LimitKey::kAfpCompactionMaxPressMm},
+    {"lift", "mm", "tool point above the laid surface by", LimitKey::kAfpCompactionMaxLiftMm},
+    {"press", "mm", "tool point below the laid surface by", LimitKey::kAfpCompactionMaxPressMm},
     {"roll", "deg", "roller axis out of the tangent plane by", LimitKey::kAfpCompactionMaxRollDeg},
     {"lean", "deg", "head axis leaning along the travel by", LimitKey::kAfpCompactionMaxLeanDeg},
 }};
+
+// "1-16", "3", "1-4, 6-16": the set bits of `mask` as runs of 1-based tow numbers.
+std::string TowSpan(std::uint64_t mask) {
+  std::string out;
+  for (int t = 1; t <= 64; ++t) {
+    if (!detail::TowLaid(mask, t)) continue;
+    int last = t;
+    while (last < 64 && detail::TowLaid(mask, last + 1)) ++last;
+    if (!out.empty()) out += ", ";
+    out += std::to_string(t);
+    if (last > t) out += "-" + std::to_string(last);
+    t = last;
+  }
+  return out;
+}
 
 class CompactionRule final : public Rule {
  public:
@@ -41,7 +59,8 @@ class CompactionRule final : public Rule {
              "compaction roller on the surface while laying: tool point lift and press along "
              "the normal, roller axis roll, head lean along the travel (percent of each limit)",
              "%"),
-        laid_(std::move(laid)) {
+        laid_(std::move(laid)),
+        below_(laid_->Surface(), ctx.scene->plies, laid_->Layout()) {
     summary_.error_limit = 100.0;
     mergeable_ = false;  // judged over whole plies (Rule::Mergeable)
     for (std::size_t i = 0; i < kMeasures.size(); ++i) {
@@ -53,6 +72,7 @@ class CompactionRule final : public Rule {
   void OnLine(const trace::LineRecord& record) override {
     const detail::LaidLine* line = laid_->Sample(record);
     if (line == nullptr) return;
+    below_.Lay(*line);  // commits the plies before this line's: Around() reads what lies below
     bool off_reported = false;
     for (const detail::LaidPose& pose : line->poses) {
       if (!pose.cross.ok) {
@@ -67,9 +87,12 @@ class CompactionRule final : public Rule {
       laid_points_.Add(pose.cross.boundary.front());
       laid_points_.Add(pose.cross.boundary.back());
       const Eigen::Vector3d n = laid_->Surface().Normal(pose.cross.centre_uv);
+      // The laid surface: the tool surface raised along the normal by the thickness below
+      // (within a cell of the foot: lift over the thickest, press under the thinnest).
       const double d = (pose.tool.translation() - pose.cross.centre).dot(n);
+      const detail::StackRange h = below_.Around(pose.cross.centre_uv);
       const std::array<double, 4> values = {
-          std::max(0.0, d), std::max(0.0, -d),
+          std::max(0.0, d - h.max_mm), std::max(0.0, h.min_mm - d),
           std::asin(std::min(1.0, std::abs(pose.tool.linear().col(0).dot(n)))) * kRadToDeg,
           std::asin(std::min(1.0, std::abs(pose.tool.linear().col(1).dot(n)))) * kRadToDeg};
       for (std::size_t i = 0; i < kMeasures.size(); ++i) {
@@ -79,14 +102,36 @@ class CompactionRule final : public Rule {
             pct, line->source_line, 0, kMeasures[i].subject,
             [&] {
               char buf[200];
-              std::snprintf(buf, sizeof(buf), "%s %.4g %s (limit %.4g %s):", kMeasures[i].what,
-                            values[i], kMeasures[i].unit, limits_[i], kMeasures[i].unit);
+              std::snprintf(buf, sizeof(buf),
+                            "ply %d course %d (tows %s) %s %.4g %s (limit %.4g %s; %.4g mm laid "
+                            "below):",
+                            line->ply, line->course, TowSpan(line->tows).c_str(), kMeasures[i].what,
+                            values[i], kMeasures[i].unit, limits_[i], kMeasures[i].unit,
+                            i == 1 ? h.min_mm : h.max_mm);
               return std::string(buf);
             },
             nullptr);
       }
     }
   }
+
+  void Finish(const RuleContext&) override { below_.Finish(); }
+
+  void AddLaydownFigures(std::vector<LaydownFigures>& figures) const override {
+    for (LaydownFigures& f : figures) {
+      std::optional<detail::StackRange> range;
+      if (f.ply == 0) {
+        range = below_.Whole();
+      } else if (const auto it = below_.PlyStacks().find(f.ply); it != below_.PlyStacks().end()) {
+        range = it->second;
+      }
+      if (!range) continue;
+      f.thickness_min_mm = range->min_mm;
+      f.thickness_max_mm = range->max_mm;
+    }
+  }
+
+  const detail::ThicknessBelow& Below() const { return below_; }
 
   // The laid courses' centre and outer edges (the compaction rule visits every laying pose).
   std::vector<DrawnPoints> Drawings() const override { return {laid_points_.Drawn("afp_laid")}; }
@@ -95,9 +140,15 @@ class CompactionRule final : public Rule {
   std::shared_ptr<detail::LaidTows> laid_;
   detail::ThinnedPoints laid_points_;
   std::array<double, 4> limits_{};
+  detail::ThicknessBelow below_;
 };
 
 }  // namespace
+
+const detail::ThicknessBelow* detail::ThicknessOf(const Rule& rule) {
+  const auto* c = dynamic_cast<const CompactionRule*>(&rule);
+  return c != nullptr ? &c->Below() : nullptr;
+}
 
 RuleEntry AfpCompactionRuleEntry() {
   return {"afp.compaction", CloseUpFamily::kAfp, detail::RunsWhenLaying,

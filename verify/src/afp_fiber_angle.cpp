@@ -12,12 +12,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "afp_laid.h"
+#include "afp_thickness.h"
+#include "afp_value_grid.h"
 #include "detail/rule_registry.h"
 #include "stitchsim/common/units.h"
 
@@ -49,7 +52,8 @@ class FiberAngleRule final : public Rule {
              "(the rosette reference projected onto the surface, turned by the ply angle)",
              "deg"),
         laid_(std::move(laid)),
-        plies_(&ctx.scene->plies) {
+        plies_(&ctx.scene->plies),
+        map_(detail::LaminateGrid(laid_->Surface(), ctx.scene->plies, laid_->Layout())) {
     summary_.error_limit = ctx.scene->limits.Value(scene::LimitKey::kAfpFiberAngleMaxDeg);
     for (int t = 1; t <= laid_->Layout().tows; ++t) {
       AddSubject("tow " + std::to_string(t), summary_.error_limit, std::nullopt);
@@ -67,23 +71,23 @@ class FiberAngleRule final : public Rule {
       if (!detail::TowLaid(line->tows, t)) continue;
       double tow_worst = -1.0;
       // The previous pose's centre on the surface, carried: each point is evaluated once.
-      bool have_prev = false;
+      const detail::LaidPose* prev = nullptr;
       Eigen::Vector2d ua = Eigen::Vector2d::Zero();
       Eigen::Vector3d pa = Eigen::Vector3d::Zero();
       for (const detail::LaidPose& pose : line->poses) {
         if (!pose.cross.ok) {
-          have_prev = false;
+          prev = nullptr;
           continue;
         }
         const Eigen::Vector2d ub = detail::TowCentreUv(pose.cross, t);
         const Eigen::Vector3d pb = surface.Point(ub);
-        const bool have_pair = have_prev;
+        const detail::LaidPose* pair = prev;
         const Eigen::Vector2d u_prev = ua;
         const Eigen::Vector3d p_prev = pa;
-        have_prev = true;
+        prev = &pose;
         ua = ub;
         pa = pb;
-        if (!have_pair) continue;
+        if (pair == nullptr) continue;
         const Eigen::Vector3d n = surface.Normal(0.5 * (u_prev + ub)).normalized();
         Eigen::Vector3d laid = pb - p_prev;
         laid -= laid.dot(n) * n;
@@ -91,7 +95,12 @@ class FiberAngleRule final : public Rule {
         const std::optional<Eigen::Vector3d> design = DesignDirection(ply, n);
         if (!design) continue;
         const double c = std::clamp(std::abs(laid.normalized().dot(*design)), 0.0, 1.0);
-        tow_worst = std::max(tow_worst, RadToDeg(std::acos(c)));
+        const double deg = RadToDeg(std::acos(c));
+        tow_worst = std::max(tow_worst, deg);
+        const auto k = static_cast<std::size_t>(t);
+        map_.PaintMax({pair->cross.boundary_uv[k - 1], pair->cross.boundary_uv[k],
+                       pose.cross.boundary_uv[k], pose.cross.boundary_uv[k - 1]},
+                      deg);
       }
       if (tow_worst < 0.0) continue;
       ObserveSubject(static_cast<std::size_t>(t) - 1, tow_worst, line->source_line, 0);
@@ -101,6 +110,8 @@ class FiberAngleRule final : public Rule {
       }
     }
     if (worst < 0.0) return;
+    double& ply_worst = ply_worst_.try_emplace(line->ply, worst).first->second;
+    ply_worst = std::max(ply_worst, worst);
     CheckUpper(
         worst, line->source_line, 0, "tow " + std::to_string(worst_tow),
         [&] {
@@ -114,12 +125,34 @@ class FiberAngleRule final : public Rule {
         nullptr);
   }
 
+  void AddLaydownFigures(std::vector<LaydownFigures>& figures) const override {
+    for (LaydownFigures& f : figures) {
+      if (f.ply == 0) {
+        for (const auto& [ply, worst] : ply_worst_) {
+          f.worst_fiber_angle_deg = std::max(f.worst_fiber_angle_deg.value_or(worst), worst);
+        }
+      } else if (const auto it = ply_worst_.find(f.ply); it != ply_worst_.end()) {
+        f.worst_fiber_angle_deg = it->second;
+      }
+    }
+  }
+
+  const detail::WorstValueGrid& Map() const { return map_; }
+
  private:
   std::shared_ptr<detail::LaidTows> laid_;
   const std::vector<scene::PlySpec>* plies_;
+  std::map<int, double> ply_worst_;  ///< the worst deviation per ply (M70 P<n>), deg
+  /// The worst deviation per cell over the plies, deg: the tow quads painted.
+  detail::WorstValueGrid map_;
 };
 
 }  // namespace
+
+const detail::WorstValueGrid* detail::FiberAngleGridOf(const Rule& rule) {
+  const auto* f = dynamic_cast<const FiberAngleRule*>(&rule);
+  return f != nullptr ? &f->Map() : nullptr;
+}
 
 RuleEntry AfpFiberAngleRuleEntry() {
   return {"afp.fiber_angle", CloseUpFamily::kNone, detail::RunsWhenLaying,

@@ -103,6 +103,9 @@ Json LaydownToJson(const LaydownFigures& f) {
   j["tows_added"] = f.tows_added;
   j["tows_cut"] = f.tows_cut;
   j["shortest_tow_mm"] = OptionalNumber(f.shortest_tow_mm);
+  j["thickness_min_mm"] = OptionalNumber(f.thickness_min_mm);
+  j["thickness_max_mm"] = OptionalNumber(f.thickness_max_mm);
+  j["worst_fiber_angle_deg"] = OptionalNumber(f.worst_fiber_angle_deg);
   return j;
 }
 

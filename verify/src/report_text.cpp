@@ -181,6 +181,13 @@ std::string LaydownLine(const LaydownFigures& f) {
          " kg laid, " + FormatNumber(f.rate_kg_h) + " kg/h; " + Count(f.tows_added, "tow", "tows") +
          " added, " + std::to_string(f.tows_cut) + " cut; shortest tow piece " +
          (f.shortest_tow_mm ? FormatNumber(*f.shortest_tow_mm) + " mm" : std::string("-"));
+  out += "; thickness ";
+  out += f.thickness_min_mm && f.thickness_max_mm ? FormatNumber(*f.thickness_min_mm) + " to " +
+                                                        FormatNumber(*f.thickness_max_mm) + " mm"
+                                                  : std::string("-");
+  out += "; worst fibre angle ";
+  out +=
+      f.worst_fiber_angle_deg ? FormatNumber(*f.worst_fiber_angle_deg) + " deg" : std::string("-");
   return out + "\n";
 }
 

@@ -142,6 +142,7 @@ void Verifier::Finish(Report& report) {
   if (laydown_) {
     laydown_->Finish();
     if (laydown_->SawAnything()) report.laydown = laydown_->Figures();
+    for (const auto& r : rules_) r->AddLaydownFigures(report.laydown);
   }
   report.stitches = stitches_;
   report.verdict = report.errors == 0 ? "pass" : "fail";

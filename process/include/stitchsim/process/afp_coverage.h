@@ -26,6 +26,16 @@ struct CoverageGrid {
   bool coarsened = false;  ///< the asked cell size would exceed the cell budget
 };
 
+/// A grid over [lo_uv, hi_uv] with square cells of at most `max_cell` (u, v units), coarsened
+/// (`coarsened` set) to stay within `max_cells`.
+CoverageGrid GridOver(const Eigen::Vector2d& lo_uv, const Eigen::Vector2d& hi_uv, double max_cell,
+                      std::size_t max_cells);
+
+/// The cells of `grid` whose centre lies in the quad (corners in order around it, either
+/// winding; even-odd test), row-major indices iv * nu + iu, into `cells` (cleared first).
+void CellsInQuad(const CoverageGrid& grid, const std::array<Eigen::Vector2d, 4>& quad_uv,
+                 std::vector<std::size_t>& cells);
+
 /// About 6 bytes a cell (7 while measuring): 7 M cells stay under 50 MB.
 inline constexpr std::size_t kCoverageMaxCells = 7'000'000;
 
@@ -66,6 +76,7 @@ class CoverageMap {
   std::vector<std::uint8_t> in_course_;
   std::vector<std::int32_t> lines_;
   std::vector<std::uint32_t> course_cells_;  ///< cells painted by the current course
+  std::vector<std::size_t> quad_cells_;      ///< PaintQuad's scratch
 };
 
 /// One ply's coverage, mm^2. "Beyond band": more than `band` (u, v units) from the boundary.

@@ -37,6 +37,11 @@ Status WriteSnapshotFolder(const SnapshotInputs& in, const std::string& dir, Dia
 /// file cannot be written.
 Status WriteAfpCoverageSnapshots(const verify::Verifier& verifier, const std::string& dir);
 
+/// Writes laminate_thickness.png and laminate_fiber_angle.png into `dir`: the stack thickness
+/// and the worst fibre-angle deviation the programme's plies laid, over (u, v) (verify::
+/// LaminateMaps); nothing when nothing was laid; io-write / io-missing-file on failure.
+Status WriteAfpLaminateSnapshots(const verify::Verifier& verifier, const std::string& dir);
+
 /// The colour (RGBA in [0, 1]) of what a rule draws (verify::DrawnPoints label), on the
 /// overview and in the HTML report: laid tows blue, gaps red, overlaps magenta.
 std::array<float, 4> DrawnColour(const std::string& label);

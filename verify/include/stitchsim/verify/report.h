@@ -92,6 +92,14 @@ struct LaydownFigures {
   long tows_added = 0;                    ///< tow adds (a run's start counts each tow it lays)
   long tows_cut = 0;                      ///< tow cuts (a run's end counts each tow it lays)
   std::optional<double> shortest_tow_mm;  ///< shortest tow piece (add to cut, along x), mm
+  /// The stack thickness over the area the ply laid, just after it is laid (the whole
+  /// programme: over all the area laid, at its end), smallest and largest, mm; from
+  /// afp.compaction's thickness map (cells of 2 mm in (u, v)); absent when nothing was laid.
+  std::optional<double> thickness_min_mm;
+  std::optional<double> thickness_max_mm;
+  /// The worst fibre-angle deviation of the ply's tows (afp.fiber_angle), deg; absent when
+  /// the rule judged none of its lines.
+  std::optional<double> worst_fiber_angle_deg;
 };
 
 struct Report {

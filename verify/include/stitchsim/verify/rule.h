@@ -87,6 +87,10 @@ class Rule {
 
   /// What the rule draws on the overview snapshot (most rules: nothing).
   virtual std::vector<DrawnPoints> Drawings() const { return {}; }
+  /// After Finish: the rule's own laydown figures (afp.compaction: the stack thickness;
+  /// afp.fiber_angle: the worst deviation) into `figures` (per ply, then the whole, ply 0),
+  /// for the report's laydown section. Most rules add nothing.
+  virtual void AddLaydownFigures(std::vector<LaydownFigures>& /*figures*/) const {}
 
   const RuleSummary& Summary() const { return summary_; }
   /// The trace sample at the worst finding, for the close-up snapshot.
