@@ -90,7 +90,13 @@ void PlanJobs(const scene::Scene& scene, std::vector<LaminateJob>& jobs,
     PlyPlanOptions ply_options = options.ply;
     ply_options.progress = nullptr;
     for (std::size_t i = next++; i < jobs.size(); i = next++) {
-      jobs[i].plan = PlanPly(scene, jobs[i].ply, ply_options, jobs[i].sink);
+      // Each ply on a thread of its own: an OpenCASCADE surface's projection starts from the
+      // last answer on its thread (geom/src/occt_surface.cpp), so a ply planned after another
+      // on one thread came out different in the sixth decimal, and the programme depended on
+      // which worker took which ply. A fresh thread starts every ply from the same state.
+      std::thread([&, i] {
+        jobs[i].plan = PlanPly(scene, jobs[i].ply, ply_options, jobs[i].sink);
+      }).join();
       if (options.progress) {
         const std::lock_guard<std::mutex> lock(progress_mutex);
         options.progress(++done, static_cast<double>(jobs.size()));

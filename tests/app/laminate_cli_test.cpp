@@ -36,6 +36,13 @@ fs::path PanelWithLaminate(const std::string& stagger, const std::string& file, 
   return scene;
 }
 
+// `r` is exit 2 with error[`code`] on stderr, and `nc` was not written.
+void ExpectRefused(const CliRun& r, const std::string& code, const fs::path& nc) {
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("error[" + code + "]"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(nc));
+}
+
 TEST(PlanLaminate, PanelLaminatePlansIntoOneProgramme) {
   int line = 0;
   const fs::path scene =
@@ -60,21 +67,17 @@ TEST(PlanLaminate, UnknownLaminateIsExit2) {
   const fs::path nc = testing::ScratchDir() / "unknown.nc";
   const CliRun r =
       Cli("plan laminate --scene " + scene.string() + " --laminate wing -o " + nc.string());
-  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  ExpectRefused(r, "plan-unknown-laminate", nc);
   EXPECT_NE(r.err.find(scene.string() + ":1:"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("error[plan-unknown-laminate]"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("no laminate 'wing' (laminates: skin)"), std::string::npos) << r.err;
-  EXPECT_FALSE(fs::exists(nc));
 }
 
 TEST(PlanLaminate, SceneWithoutLaminatesIsExit2) {
   const fs::path nc = testing::ScratchDir() / "none.nc";
   const CliRun r =
       Cli("plan laminate --scene " + kPanel.string() + " --laminate skin -o " + nc.string());
-  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
-  EXPECT_NE(r.err.find("error[plan-unknown-laminate]"), std::string::npos) << r.err;
+  ExpectRefused(r, "plan-unknown-laminate", nc);
   EXPECT_NE(r.err.find("(laminates: none"), std::string::npos) << r.err;
-  EXPECT_FALSE(fs::exists(nc));
 }
 
 TEST(PlanLaminate, AStaggerTheCourseCannotHoldIsExit2AtTheLaminate) {
@@ -92,12 +95,10 @@ TEST(PlanLaminate, AStaggerTheCourseCannotHoldIsExit2AtTheLaminate) {
   fs::remove(nc);
   r = Cli("plan laminate --scene " + scene.string() + " --laminate skin -o " + nc.string() +
           " --quiet");
-  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  ExpectRefused(r, "plan-laminate-stagger", nc);
   EXPECT_NE(r.err.find(scene.string() + ":" + std::to_string(line) + ":"), std::string::npos)
       << r.err;
-  EXPECT_NE(r.err.find("error[plan-laminate-stagger]"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("50.8 mm apart"), std::string::npos) << r.err;
-  EXPECT_FALSE(fs::exists(nc));
 }
 
 TEST(PlanLaminate, AnOutputThatCannotBeWrittenIsExit2) {
@@ -106,9 +107,7 @@ TEST(PlanLaminate, AnOutputThatCannotBeWrittenIsExit2) {
   const fs::path nc = scene / "lam.nc";  // under a file: no folder can be made there
   const CliRun r = Cli("plan laminate --scene " + scene.string() + " --laminate skin -o " +
                        nc.string() + " --quiet");
-  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
-  EXPECT_NE(r.err.find("error[io-write]"), std::string::npos) << r.err;
-  EXPECT_FALSE(fs::exists(nc));
+  ExpectRefused(r, "io-write", nc);
 }
 
 }  // namespace
