@@ -20,6 +20,8 @@ void AddPlanCommand(CLI::App& app, int& exit_code);
 void AddPlanAfpCommand(CLI::App& plan, int& exit_code);
 /// `plan ply` under the `plan` command (ply_cmd.cpp).
 void AddPlanPlyCommand(CLI::App& plan, int& exit_code);
+/// `plan laminate` under the `plan` command (laminate_cmd.cpp).
+void AddPlanLaminateCommand(CLI::App& plan, int& exit_code);
 void AddVerifyCommand(CLI::App& app, int& exit_code);
 /// `report merge` (report_merge_cmd.cpp): the report of a run from its shards' parts.
 void AddReportCommand(CLI::App& app, int& exit_code);

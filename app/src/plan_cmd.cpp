@@ -1,6 +1,7 @@
 // `stitchsim plan stitch`: writes the stitching programme of one path of a scene.
 // `stitchsim plan raster`: constraint-aware raster of a large preform (docs/raster.md).
-// `plan afp` (plan_afp_cmd.cpp) and `plan ply` (ply_cmd.cpp) register under `plan` here.
+// `plan afp` (plan_afp_cmd.cpp), `plan ply` (ply_cmd.cpp) and `plan laminate`
+// (laminate_cmd.cpp) register under `plan` here.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
@@ -215,6 +216,7 @@ void AddPlanCommand(CLI::App& app, int& exit_code) {
   AddQuietFlag(*ras_cmd, ras->quiet);
   ras_cmd->callback([ras, &exit_code] { exit_code = RunPlanRaster(*ras); });
   AddPlanPlyCommand(*plan, exit_code);
+  AddPlanLaminateCommand(*plan, exit_code);
 }
 
 }  // namespace stitchsim::app

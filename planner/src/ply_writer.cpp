@@ -46,8 +46,9 @@ class PlyWriter {
             const program::Dialect& d, std::ostream& out)
       : plans_(plans), plan_(plans.front()), scene_(scene), d_(d), w_(out, d), pose_(d) {}
 
-  void Write() {
+  void Write(const std::string& laminate = {}) {
     program::ProgramIdentity id;
+    if (!laminate.empty()) id.laminate = laminate;
     id.scene = scene_.name;
     id.head = scene_.head.name;
     id.tows = plan_->band.count;
@@ -176,8 +177,9 @@ void WritePlyProgram(const PlyPlan& plan, const scene::Scene& scene,
 }
 
 void WritePlyProgram(std::span<const PlyPlan* const> plans, const scene::Scene& scene,
-                     const program::Dialect& dialect, std::ostream& out) {
-  PlyWriter(plans, scene, dialect, out).Write();
+                     const program::Dialect& dialect, std::ostream& out,
+                     const std::string& laminate) {
+  PlyWriter(plans, scene, dialect, out).Write(laminate);
 }
 
 void WritePlyTowsCsv(const PlyPlan& plan, std::ostream& out) {

@@ -44,6 +44,7 @@ const Key kKeys[] = {
     {"raster", TextKey{&ProgramIdentity::raster}},
     {"ply", TextKey{&ProgramIdentity::ply}},
     {"plies", TextKey{&ProgramIdentity::plies}},
+    {"laminate", TextKey{&ProgramIdentity::laminate}},
     {"course", TextKey{&ProgramIdentity::course}},
     {"lay_angle_deg", RealKey{&ProgramIdentity::lay_angle_deg, 6, kAny, false, kFinite}},
     {"angle_deg", RealKey{&ProgramIdentity::angle_deg, 6, kAny, false, kFinite}},

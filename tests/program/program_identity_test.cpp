@@ -38,6 +38,7 @@ ProgramIdentity EveryField() {
   id.raster = "serpentine";
   id.ply = "skin_45";
   id.plies = "skin_0,skin_45";
+  id.laminate = "upper_skin";
   id.course = "lay45";
   id.lay_angle_deg = -45.0;
   id.angle_deg = 22.5;
@@ -58,7 +59,7 @@ TEST(program_identity, WrittenThenReadBackIsTheSameIdentityOverEveryField) {
   const ProgramIdentity id = EveryField();
   const ProgramHeader header = WriteIdentity(id);
   // One entry per field: a field the table forgot would be missing here.
-  EXPECT_EQ(header.entries.size(), 20u);
+  EXPECT_EQ(header.entries.size(), 21u);
   DiagnosticSink sink;
   const std::optional<ProgramIdentity> back = ReadBack(HeaderText(id), sink);
   EXPECT_TRUE(sink.Diagnostics().empty());
@@ -66,6 +67,7 @@ TEST(program_identity, WrittenThenReadBackIsTheSameIdentityOverEveryField) {
   EXPECT_EQ(*back, id);
   // Field by field too, so a failure says which.
   EXPECT_EQ(back->plies, "skin_0,skin_45");
+  EXPECT_EQ(back->laminate, "upper_skin");
   EXPECT_EQ(back->lay_angle_deg, -45.0);
   EXPECT_EQ(back->course_length_mm, 534.803451);
   EXPECT_EQ(back->stitch_length_mm, 3.175);

@@ -160,9 +160,11 @@ std::optional<PlyPlan> PlanPly(const scene::Scene& scene, const scene::PlySpec& 
 void WritePlyProgram(const PlyPlan& plan, const scene::Scene& scene,
                      const program::Dialect& dialect, std::ostream& out);
 /// Several plies in one programme, laid in the order given: one M70 each (its position in
-/// the scene's `plies:`), courses numbered per ply; the header names them (`plies=a,b`).
+/// the scene's `plies:`), courses numbered per ply; the header names them (`plies=a,b`) and,
+/// when `laminate` is not empty, the scene laminate they are (`laminate=NAME`).
 void WritePlyProgram(std::span<const PlyPlan* const> plans, const scene::Scene& scene,
-                     const program::Dialect& dialect, std::ostream& out);
+                     const program::Dialect& dialect, std::ostream& out,
+                     const std::string& laminate = {});
 
 /// Per course, tow and laid segment, one row per course point inside the segment:
 /// course,tow,segment,s_start_mm,s_end_mm,s_mm,left_x,left_y,left_z,right_x,right_y,right_z.

@@ -23,6 +23,7 @@ struct ProgramIdentity {
   std::optional<std::string> raster;       ///< plan raster: the strategy, jump | serpentine
   std::optional<std::string> ply;          ///< plan ply, one ply: its name
   std::optional<std::string> plies;        ///< plan ply, several plies: names, comma separated
+  std::optional<std::string> laminate;     ///< plan laminate: the scene laminate's name
   std::optional<std::string> course;       ///< plan afp: the course's name
   std::optional<double> lay_angle_deg;     ///< plan afp by lay angle: to the u axis, degrees
   std::optional<double> angle_deg;         ///< plan ply: the ply angle, degrees
