@@ -217,6 +217,9 @@ TEST(PlanPlyNarrow, EveryPlyOfTheScenesAndTestsThatPlansVerifiesClean) {
     const auto scene = scene::LoadScene(file, sink);
     if (!scene) continue;
     for (const scene::PlySpec& ply : scene->plies) {
+      // A laminate's inline plies (`<laminate>/<k>`) are planned as a stack by `plan
+      // laminate` (laminate_cli_test.cpp); the wing's 16, one by one, would take minutes.
+      if (ply.name.find('/') != std::string::npos) continue;
       SCOPED_TRACE(file.filename().string() + " " + ply.name);
       const fs::path nc = dir / (file.stem().string() + "_" + ply.name + ".nc");
       const CliRun plan = Cli("plan ply --quiet --scene " + file.string() + " --ply " + ply.name +
