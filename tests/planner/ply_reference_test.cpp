@@ -121,7 +121,7 @@ TEST(PlyReference, CylinderAt45DegFollowsTheProjectedLine) {
   double worst = 0.0;
   for (const CurvePoint& p : ref.points)
     worst = std::max(worst, std::abs(p.uv.x() - 100.0 - kRadius * std::sin(p.uv.y() / kRadius)));
-  EXPECT_LT(worst, 1e-4);
+  EXPECT_LT(worst, 1e-6);  // 6e-10 mm measured; Euler steps: 0.9 mm
   EXPECT_GT(ref.points.back().uv.y() - ref.points.front().uv.y(), 1150.0);
   EXPECT_GT(ref.points.back().uv.x(), ref.points.front().uv.x());  // along the direction
 }
@@ -149,7 +149,7 @@ TEST(PlyReference, CylinderTurnedPlyKeepsTheDesignAngleAlongTheCourse) {
         (ref.points[i + 1].position - ref.points[i - 1].position).normalized();
     worst = std::max(worst, std::acos(std::min(1.0, std::abs(chord.dot(design)))));
   }
-  EXPECT_LT(worst, 1e-3);
+  EXPECT_LT(worst, 1e-4);  // 1.0e-5 rad measured; Euler steps: 2.7e-3
   // Not the straight fibre axis: the course turns against it by tens of mm over the region.
   const Eigen::Vector2d a = ref.points.front().uv, b = ref.points.back().uv;
   double bow = 0.0;
