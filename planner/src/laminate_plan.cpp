@@ -29,9 +29,9 @@ bool SameFibreAngle(double a_rad, double b_rad) {
 }
 
 /// `ply` with its reference moved `shift_mm` to the left of its fibre direction, in the
-/// tangent plane at the origin's foot point. A geodesic reference starts at the foot of the
-/// origin, so the foot itself moves; a projected one is the fibre axis through the origin, so
-/// the origin moves (the axis keeps its height over the surface).
+/// tangent plane at the origin's foot point. A geodesic or constant-angle reference starts at
+/// the foot of the origin, so the foot itself moves; a projected one is the fibre axis through the
+/// origin, so the origin moves (the axis keeps its height over the surface).
 scene::PlySpec Shifted(const geom::Surface& surface, scene::PlySpec ply, double shift_mm) {
   if (shift_mm == 0.0) return ply;
   const geom::SurfaceProjection foot = surface.Project(ply.origin_mm);
@@ -39,7 +39,8 @@ scene::PlySpec Shifted(const geom::Surface& surface, scene::PlySpec ply, double 
   const Eigen::Vector3d d =
       Eigen::AngleAxisd(ply.angle_rad, n) * geom::Tangential(ply.direction, n);
   const Eigen::Vector3d left = n.cross(d).normalized();
-  const Eigen::Vector3d from = ply.geodesic_reference ? foot.point : ply.origin_mm;
+  const Eigen::Vector3d from =
+      ply.reference_path == scene::ReferencePath::kProjected ? ply.origin_mm : foot.point;
   ply.origin_mm = from + shift_mm * left;
   return ply;
 }

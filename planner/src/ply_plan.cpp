@@ -61,7 +61,10 @@ ReferenceCurve ReferenceCourse(const geom::Surface& surface, const scene::PlySpe
     r.message = "the fibre axis of ply '" + ply.name + "' does not cross the ply on the surface";
     return r;
   }
-  if (ply.geodesic_reference) return GeodesicReference(surface, foot, d, region);
+  if (ply.reference_path == scene::ReferencePath::kGeodesic)
+    return GeodesicReference(surface, foot, d, region);
+  if (ply.reference_path == scene::ReferencePath::kConstantAngle)
+    return ConstantAngleReference(surface, ply, angle_rad, region, options.point_spacing_mm);
   FiberAxis axis{ply.origin_mm + t_min * d, ply.origin_mm + t_max * d, ply.projection};
   return ProjectFiberAxis(surface, axis, options.chord_tol_mm);
 }

@@ -163,7 +163,11 @@ class PlyReader {
     }
     if (!r_.ExpectMap(*ref, "reference")) return false;
     r_.CheckKeys(*ref, {"origin", "direction", "projection", "path"}, "ply reference");
-    Choice<bool>(*ref, "path", {{"projected", false}, {"geodesic", true}}, ply.geodesic_reference);
+    Choice<ReferencePath>(*ref, "path",
+                          {{"projected", ReferencePath::kProjected},
+                           {"geodesic", ReferencePath::kGeodesic},
+                           {"constant_angle", ReferencePath::kConstantAngle}},
+                          ply.reference_path);
     if (scene_.surface == nullptr) return false;
     auto axes = ReadReferenceAxes(r_, *ref, unit_, *scene_.surface, "bad-ply");
     if (!axes) return false;

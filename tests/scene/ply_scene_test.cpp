@@ -90,6 +90,9 @@ TEST(ScenePlies, EveryBadPlyIsReportedAtItsLine) {
       {Ply("a", "boundary_uv: [[0, 0], [100, 100], [100, 0], [0, 100]]"), 19},  // crossing
       {Ply("a", good + ", rule: spiral"), 19},
       {Ply("a", good + ", method: exact"), 19},
+      {"  - {name: a, reference: {origin: [0, 0, 50], direction: [1, 0, 0], path: constant}, " +
+           good + "}\n",
+       19},  // an unknown reference path
       {Ply("a", good + ", coverage: 30"), 19},
       {Ply("a", good + ", tows: 17"), 19},
       {Ply("a", good) + Ply("a", good), 20},  // the name twice
@@ -112,6 +115,33 @@ TEST(ScenePlies, EveryBadPlyIsReportedAtItsLine) {
     EXPECT_EQ(r.code, "scene-bad-ply") << r.message;
     EXPECT_EQ(r.line, c.line) << r.message;
   }
+}
+
+TEST(ScenePlies, ReferencePathsAreRead) {
+  const std::string good = "boundary_uv: [[0, 0], [100, 0], [0, 100]]";
+  auto ref = [](const std::string& path) {
+    return "reference: {origin: [0, 0, 50], direction: [1, 0, 0]" +
+           (path.empty() ? std::string() : ", path: " + path) + "}, ";
+  };
+  const Loaded r = Load("  - {name: a, " + ref("") + good + "}\n  - {name: b, " + ref("projected") +
+                        good + "}\n  - {name: c, " + ref("geodesic") + good + "}\n  - {name: d, " +
+                        ref("constant_angle") + good + "}\n");
+  ASSERT_TRUE(r.scene) << r.code << " " << r.message;
+  EXPECT_EQ(r.scene->FindPly("a")->reference_path, ReferencePath::kProjected);
+  EXPECT_EQ(r.scene->FindPly("b")->reference_path, ReferencePath::kProjected);
+  EXPECT_EQ(r.scene->FindPly("c")->reference_path, ReferencePath::kGeodesic);
+  EXPECT_EQ(r.scene->FindPly("d")->reference_path, ReferencePath::kConstantAngle);
+  // An unknown path, in block style: at the line of its value, naming every path.
+  const Loaded bad = Load(
+      "  - name: a\n    reference:\n      origin: [0, 0, 50]\n"
+      "      direction: [1, 0, 0]\n      path: streamline\n    " +
+      good + "\n");
+  EXPECT_FALSE(bad.scene);
+  EXPECT_EQ(bad.code, "scene-bad-ply");
+  EXPECT_EQ(bad.line, 23);
+  EXPECT_NE(bad.message.find("projected or geodesic or constant_angle, got 'streamline'"),
+            std::string::npos)
+      << bad.message;
 }
 
 TEST(ScenePlies, PliesNeedAnAfpHead) {

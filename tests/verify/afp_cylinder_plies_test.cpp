@@ -49,7 +49,7 @@ std::unique_ptr<scene::Scene> CylinderPly(double r, double angle_deg,
   scene::PlySpec ply;
   ply.name = "p";
   ply.angle_rad = angle_deg * kDeg;
-  ply.geodesic_reference = true;
+  ply.reference_path = scene::ReferencePath::kGeodesic;
   ply.method = method;
   ply.tows = 16;
   ply.boundary_uv = {{-150, -110}, {150, -110}, {150, 110}, {-150, 110}};

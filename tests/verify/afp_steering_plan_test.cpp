@@ -106,7 +106,8 @@ void ExpectScenePliesAgree(const std::string& scene_name, const std::vector<std:
   for (scene::PlySpec& ply : s->plies) {
     if (!only.empty() && std::find(only.begin(), only.end(), ply.name) == only.end()) continue;
     for (const bool geodesic : {false, true}) {
-      ply.geodesic_reference = geodesic;
+      ply.reference_path =
+          geodesic ? scene::ReferencePath::kGeodesic : scene::ReferencePath::kProjected;
       const Radii r = PlanAndVerify(*s, ply);
       if (r.planner.empty() || r.verifier.empty()) continue;
       std::printf("%s %s %s: smallest tow radius, planner %.1f mm, verifier %.1f mm\n",

@@ -1,7 +1,8 @@
 #pragma once
 // The fibre-placement ply planner (`stitchsim plan ply`, docs/afp.md "Plies, courses and
 // tows"): fills a scene ply with courses of the head's tows. The reference course is the
-// ply's fibre axis projected onto the surface; every other course is an offset of its
+// ply's fibre axis projected onto the surface, the geodesic from its origin, or the streamline
+// of its design direction field (scene::ReferencePath); every other course is an offset of its
 // neighbour by the course width (planner/offset_curves.h). Along each course the tows are
 // placed by process::TowsAt (the one tow model the afp.* rules share) and cut and restarted
 // at the ply boundary under the ply's coverage policy, at positions found by bisection. Part
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "stitchsim/common/diagnostics.h"
+#include "stitchsim/planner/offset_curves.h"
 #include "stitchsim/planner/plan_progress.h"
 #include "stitchsim/process/afp_tows.h"
 #include "stitchsim/program/dialect.h"
@@ -140,6 +142,23 @@ struct PlyPlan {
   double laid_outside_pct = 0.0;
   std::vector<PlyFinding> findings;  ///< empty: the cell can lay it as planned
 };
+
+/// The design fibre direction of `ply` in the tangent plane with unit normal `normal` (part
+/// frame): the ply's reference direction projected onto that plane along its `projection`,
+/// turned by `angle_rad` about the normal; unit. nullopt where it does not project (the
+/// projection lies in the tangent plane, or the direction runs along the projection).
+std::optional<Eigen::Vector3d> DesignFiberDirection(const scene::PlySpec& ply, double angle_rad,
+                                                    const Eigen::Vector3d& normal);
+
+/// The `constant_angle` reference course of `ply` at `angle_rad` (scene::ReferencePath): the
+/// streamline of DesignFiberDirection through the foot point of the ply origin, integrated
+/// both ways by RK4 in (u, v) in arc-length steps of `step_mm` (mm) until it leaves `region`
+/// ((u, v), mm) or the surface's domain; points ordered along the direction at the origin,
+/// each with the field as its tangent. Not ok (with a message) if the direction does not
+/// project at the origin or the streamline has fewer than 2 points in `region`.
+ReferenceCurve ConstantAngleReference(const geom::Surface& surface, const scene::PlySpec& ply,
+                                      double angle_rad, const geom::Domain2& region,
+                                      double step_mm);
 
 /// Plans `ply` (one of scene.plies). Diagnostics ("plan-...") for a non-AFP head, a fibre
 /// axis that does not reach the ply, a rule not implemented, too many courses, and courses the

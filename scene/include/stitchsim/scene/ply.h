@@ -25,6 +25,20 @@ enum class PlyRule {
   kLaminateFamily,
 };
 
+/// The ply's reference course (`reference: path:`); every other course is an offset of it.
+enum class ReferencePath {
+  /// The fibre axis projected onto the surface along `projection` (seed 002).
+  kProjected,
+  /// The surface geodesic from the origin's foot point along the turned direction: no
+  /// steering in the reference, so its offsets steer least.
+  kGeodesic,
+  /// The streamline through the origin's foot point of the design direction field: at each
+  /// surface point the reference direction projected into the tangent plane along
+  /// `projection`, turned by the ply angle about the normal (the direction afp.fiber_angle
+  /// judges against): the reference keeps the design angle everywhere.
+  kConstantAngle,
+};
+
 /// Which offset construction fills the ply (planner/offset_curves.h).
 enum class PlyOffsetMethod { kPaper, kCorrected };
 
@@ -53,10 +67,8 @@ struct PlySpec {
   Eigen::Vector3d origin_mm = Eigen::Vector3d::Zero();
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
   Eigen::Vector3d projection = -Eigen::Vector3d::UnitZ();
-  /// The reference course: the fibre axis projected along `projection` (seed 002, false), or
-  /// the surface geodesic from the origin's foot point along the turned direction (true: no
-  /// steering in the reference, so its offsets steer least; `reference: path: geodesic`).
-  bool geodesic_reference = false;
+  /// How the reference course runs (`reference: path:`, ReferencePath above).
+  ReferencePath reference_path = ReferencePath::kProjected;
   /// The ply boundary, a closed polygon in the surface's (u, v) (mm; the scene may give it in
   /// 3D, projected onto the surface along `projection`, or in (u, v)). Counter-clockwise.
   std::vector<Eigen::Vector2d> boundary_uv;
