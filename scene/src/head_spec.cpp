@@ -9,6 +9,7 @@
 #include "stitchsim/common/units.h"
 #include "stitchsim/geom/inertia.h"
 #include "stitchsim/geom/rotation.h"
+#include "stitchsim/scene/scene.h"
 #include "stitchsim/scene/yaml_reader.h"
 
 namespace stitchsim::scene {
@@ -400,6 +401,16 @@ std::optional<HeadSpec> LoadHeadSpec(const std::filesystem::path& file, Diagnost
   if (auto lim = r.Child(*root, "limits", false)) detail::ReadLimitMap(r, *lim, h.limits);
   if (sink.ErrorCount() > errors_before) return std::nullopt;
   return h;
+}
+
+std::optional<double> MinTowLengthMm(const Scene& scene) {
+  const std::optional<double> given = scene.limits.Get(LimitKey::kAfpMinTowLengthMm);
+  return given ? given : scene.head.afp.cut_to_roller_mm;
+}
+
+std::optional<double> MinRestartMm(const Scene& scene) {
+  const std::optional<double> given = scene.limits.Get(LimitKey::kAfpRestartDistanceMm);
+  return given ? given : scene.head.afp.min_restart_mm;
 }
 
 }  // namespace stitchsim::scene

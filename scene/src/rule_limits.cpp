@@ -3,8 +3,6 @@
 #include <cassert>
 #include <cstdio>
 
-#include "stitchsim/scene/scene.h"
-
 namespace stitchsim::scene {
 namespace {
 
@@ -108,10 +106,12 @@ constexpr LimitSpec kTable[] = {
      "area of a ply covered twice or more, beyond the band along its boundary, percent"},
     {K::kAfpMinTowLengthMm, "afp.min_tow_length", "min_mm", U::kMm, std::nullopt, false,
      "shortest tow piece the head can lay, from its add to its cut: the distance from the "
-     "cutter to the compaction roller (none given: the rule is skipped)"},
+     "cutter to the compaction roller (none given: the head's `cut_to_roller_mm`; neither: the "
+     "rule is skipped)"},
     {K::kAfpRestartDistanceMm, "afp.restart_distance", "min_mm", U::kMm, std::nullopt, false,
      "shortest distance the head travels along a tow's centre line, within a course, between "
-     "cutting the tow and adding it again (none given: the rule is skipped)"},
+     "cutting the tow and adding it again (none given: the head's `min_restart_mm`; neither: the "
+     "rule is skipped)"},
     {K::kAfpFiberAngleMaxDeg, "afp.fiber_angle", "max_deg", U::kDeg, 5.0, false,
      "laid tow direction off its ply's design fibre direction (rosette projected onto the "
      "surface, turned by the ply angle); 5 deg an assumption, designers hold 3 to 5"},
@@ -194,16 +194,6 @@ double RuleLimits::Value(LimitKey key) const {
   const std::optional<double> v = Get(key);
   assert(v && "Value() of a limit key without a default; use Get()");
   return v.value_or(0.0);
-}
-
-std::optional<double> MinTowLengthMm(const Scene& scene) {
-  const std::optional<double> given = scene.limits.Get(LimitKey::kAfpMinTowLengthMm);
-  return given ? given : scene.head.afp.cut_to_roller_mm;
-}
-
-std::optional<double> MinRestartMm(const Scene& scene) {
-  const std::optional<double> given = scene.limits.Get(LimitKey::kAfpRestartDistanceMm);
-  return given ? given : scene.head.afp.min_restart_mm;
 }
 
 }  // namespace stitchsim::scene

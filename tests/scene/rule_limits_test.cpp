@@ -84,7 +84,7 @@ TEST(LimitTable, ReportFormatDocListsTheTable) {
 
 // Every key of the table is read by some consumer (a key nobody reads is a limit a user sets
 // to no effect): each LimitKey enumerator appears in the source of process/, planner/, sim/ or
-// verify/.
+// verify/, or of scene/ outside the table (scene::MinTowLengthMm, which planner and verify call).
 TEST(LimitTable, EveryKeyIsReadBySomeConsumer) {
   const std::string header = ReadText(kSource / "scene/include/stitchsim/scene/rule_limits.h");
   const std::size_t begin = header.find("enum class LimitKey");
@@ -92,9 +92,10 @@ TEST(LimitTable, EveryKeyIsReadBySomeConsumer) {
   ASSERT_NE(begin, std::string::npos);
   ASSERT_NE(end, std::string::npos);
   std::string sources;
-  for (const char* folder : {"process/src", "planner/src", "sim/src", "verify/src"}) {
+  for (const char* folder : {"process/src", "planner/src", "sim/src", "verify/src", "scene/src"}) {
     for (const auto& e : fs::recursive_directory_iterator(kSource / folder)) {
-      if (e.path().extension() == ".cpp") sources += ReadText(e.path());
+      if (e.path().extension() == ".cpp" && e.path().filename() != "rule_limits.cpp")
+        sources += ReadText(e.path());
     }
   }
   std::size_t keys = 0;

@@ -5,6 +5,7 @@
 // course between laid tows is a gap of its width; bits beyond the head's tows are findings.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <utility>
 
 #include "afp_test_support.h"
@@ -177,6 +178,29 @@ TEST(AfpGaps, ATowCutAtThePlyBoundaryIsLeftToTheCoveragePolicy) {
   ASSERT_EQ(gap->findings.size(), 2u);
   EXPECT_EQ(gap->findings[0].line, 21);
   EXPECT_EQ(gap->findings[1].line, 22);
+}
+
+// Past the ply's end (extended tow ends are trimmed off the part) a gap or overlap between
+// two courses is no defect: a 1 mm gap along u -200..200 with the ply ending at u = 50 fires on
+// lines 20 to 22 (each has an edge point inside the ply) and not on 23 (u 100..200, wholly
+// outside); the same courses overlapping by 1.2 mm, likewise.
+TEST(AfpGaps, GapsAndOverlapsWhollyOutsideThePlyAreTrimmedOff) {
+  auto scene = AfpScene(geom::MakePlane(4000, 4000));
+  scene::PlySpec ply;
+  ply.name = "p";
+  ply.boundary_uv = {{-300, -60}, {50, -60}, {50, 170}, {-300, 170}};
+  scene->plies.push_back(ply);
+  for (const auto& [offset, id] : {std::pair{1.0, "afp.gap"}, std::pair{-1.2, "afp.overlap"}}) {
+    SCOPED_TRACE(id);
+    const Report report =
+        RunLines(*scene, TwoCourses(*scene->surface, 16 * kTowWidth + offset, false));
+    const RuleSummary* rule = RuleOf(report, id);
+    ASSERT_NE(rule, nullptr);
+    EXPECT_EQ(rule->errors, 3);
+    ASSERT_EQ(rule->findings.size(), 3u);
+    EXPECT_EQ(rule->findings.back().line, 22);
+    EXPECT_NEAR(rule->findings.back().value, std::abs(offset), 1e-6);
+  }
 }
 
 TEST(AfpGaps, TowBitsBeyondTheHeadAreFindings) {

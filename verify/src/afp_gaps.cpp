@@ -183,7 +183,8 @@ class CourseEdgeRule final : public Rule {
     s.last = p;
     const std::optional<double> d = FacingDistance(laid_->Surface(), hash_, e, reach_mm_);
     if (!d) return;
-    const double value = std::max(0.0, gap_ ? *d : -*d);
+    double value = std::max(0.0, gap_ ? *d : -*d);
+    if (value > 0.0 && OutsidePly(line, e, *d)) value = 0.0;
     if (value >= kDrawnFromMm) drawn_.Add(p);
     CheckUpper(
         value, line.source_line, 0,
@@ -195,6 +196,21 @@ class CourseEdgeRule final : public Rule {
           return std::string(buf);
         },
         nullptr);
+  }
+
+  // True when the stretch from edge point `e` to the facing edge `d` mm along e.outward (a gap;
+  // back against it: an overlap) lies outside the line's ply: material there is
+  // trimmed off the part (an extended tow end beside a neighbour's that is not), so the ply has
+  // no gap or overlap there.
+  bool OutsidePly(const LaidLine& line, const EdgePoint& e, double d) const {
+    if (line.ply < 1 || line.ply > static_cast<int>(boundaries_.size())) return false;
+    const geom::Polygon2& boundary = boundaries_[static_cast<std::size_t>(line.ply - 1)];
+    if (geom::InsidePolygon(boundary, e.uv)) return false;
+    for (int k = 1; k <= 4; ++k) {  // a stretch may cut a corner of the ply: four points on it
+      const Eigen::Vector3d at = e.point + 0.25 * k * d * e.outward;
+      if (geom::InsidePolygon(boundary, laid_->Surface().ProjectFrom(at, e.uv).uv)) return false;
+    }
+    return true;
   }
 
   // True when the course's centre passes within half a course and a tow width of the boundary
