@@ -180,10 +180,11 @@ TEST(AfpGaps, ATowCutAtThePlyBoundaryIsLeftToTheCoveragePolicy) {
   EXPECT_EQ(gap->findings[1].line, 22);
 }
 
-// Past the ply's end (extended tow ends are trimmed off the part) a gap or overlap between
-// two courses is no defect: a 1 mm gap along u -200..200 with the ply ending at u = 50 fires on
-// lines 20 to 22 (each has an edge point inside the ply) and not on 23 (u 100..200, wholly
-// outside); the same courses overlapping by 1.2 mm, likewise.
+// Past the ply's end (extended tow ends are trimmed off the part) and within a tow width of its
+// boundary (left to the coverage policy) a gap or overlap between two courses is not judged: a
+// 1 mm gap along u -200..200 with the ply ending at u = 50 fires on lines 20 to 22 (each has
+// edge points inside the ply, more than a tow width from its end) and not on 23 (u 100..200,
+// wholly outside); the same courses overlapping by 1.2 mm, likewise.
 TEST(AfpGaps, GapsAndOverlapsWhollyOutsideThePlyAreTrimmedOff) {
   auto scene = AfpScene(geom::MakePlane(4000, 4000));
   scene::PlySpec ply;

@@ -184,7 +184,7 @@ class CourseEdgeRule final : public Rule {
     const std::optional<double> d = FacingDistance(laid_->Surface(), hash_, e, reach_mm_);
     if (!d) return;
     double value = std::max(0.0, gap_ ? *d : -*d);
-    if (value > 0.0 && OutsidePly(line, e, *d)) value = 0.0;
+    if (value > 0.0 && LeftToCoverage(line, e, *d)) value = 0.0;
     if (value >= kDrawnFromMm) drawn_.Add(p);
     CheckUpper(
         value, line.source_line, 0,
@@ -198,13 +198,16 @@ class CourseEdgeRule final : public Rule {
         nullptr);
   }
 
-  // True when the stretch from edge point `e` to the facing edge `d` mm along e.outward (a gap;
-  // back against it: an overlap) lies outside the line's ply: material there is
-  // trimmed off the part (an extended tow end beside a neighbour's that is not), so the ply has
-  // no gap or overlap there.
-  bool OutsidePly(const LaidLine& line, const EdgePoint& e, double d) const {
+  // True when the edge point `e` is left to the coverage policy: within one tow width of the
+  // line's ply boundary (tows cut one by one where the boundary meets the course at a slant:
+  // the band afp.coverage judges bare and doubled area beyond), or outside the ply with the
+  // stretch to the facing edge `d` mm along e.outward (a gap; back against it: an overlap)
+  // outside too: that material is trimmed off the part (an extended tow end beside a
+  // neighbour's), so the ply has no gap or overlap there.
+  bool LeftToCoverage(const LaidLine& line, const EdgePoint& e, double d) const {
     if (line.ply < 1 || line.ply > static_cast<int>(boundaries_.size())) return false;
     const geom::Polygon2& boundary = boundaries_[static_cast<std::size_t>(line.ply - 1)];
+    if (geom::DistanceToPolygon(boundary, e.uv) <= width_mm_) return true;
     if (geom::InsidePolygon(boundary, e.uv)) return false;
     for (int k = 1; k <= 4; ++k) {  // a stretch may cut a corner of the ply: four points on it
       const Eigen::Vector3d at = e.point + 0.25 * k * d * e.outward;
