@@ -101,7 +101,9 @@ render::Image Picture(const verify::LaminateMap& map, const render::SnapshotFont
   Fill(img, x0 - 1, top, x0, top + mh, kInk);
   Fill(img, x0 + mw, top, x0 + mw + 1, top + mh, kInk);
   const Eigen::Vector2d span = map.hi_uv - map.lo_uv;
-  Ticks(map.lo_uv.x(), map.hi_uv.x(), 6, [&](double u) {
+  // As many u ticks as their labels have room for side by side (a narrow part: two or three).
+  const int u_label_room = render::TextWidth(f, Number(map.hi_uv.x())) + 24;
+  Ticks(map.lo_uv.x(), map.hi_uv.x(), std::clamp(mw / u_label_room, 2, 6), [&](double u) {
     const int x = x0 + static_cast<int>(std::lround((u - map.lo_uv.x()) / span.x() * mw));
     Fill(img, x, top + mh, x + 1, top + mh + 6, kInk);
     const std::string s = Number(u);
