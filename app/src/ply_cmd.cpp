@@ -40,12 +40,7 @@ void PrintPly(const scene::Scene& scene, const planner::PlyPlan& plan, double wa
       scene.head.afp.layup_speed_mm_s, plan.min_radius_mm, scene.head.afp.min_steering_radius_mm,
       plan.max_gap_mm, plan.max_overlap_mm, plan.bare_pct, plan.doubled_pct, plan.laid_outside_pct,
       wall_s, a.output.c_str(), a.tows_csv.empty() ? "" : ", ", a.tows_csv.c_str());
-  const planner::TowPieceFixes& fix = plan.fixes;
-  std::printf(
-      "  tow pieces: shortest %.1f mm (minimum %g mm, 0: none), %d short pieces dropped, %d "
-      "extended; restarts (minimum %g mm): %d bridged, %d moved\n",
-      plan.shortest_piece_mm, plan.min_tow_length_mm, fix.pieces_dropped, fix.pieces_extended,
-      plan.min_restart_mm, fix.restarts_bridged, fix.restarts_moved);
+  PrintTowPieceFixes(plan, "  ");
   for (const auto& f : plan.findings)
     std::printf("error[%s]: %s (the cell cannot lay this ply as planned)\n", f.code.c_str(),
                 f.message.c_str());

@@ -126,14 +126,20 @@ geom::Domain2 LaidBox(const geom::Surface& surface, const std::vector<LaminateJo
   return box;
 }
 
-/// Every pose and tow edge of `plan` moved along its tool z by the thickness below it.
-void LiftOnto(const ThicknessField& below, PlyPlan& plan) {
+/// Every pose and tow edge of `plan` moved along the surface normal at its foot by the
+/// thickness below it: the roller's contact on the raised surface (an inclined head, whose tool
+/// z leans from the normal, is not raised along its axis).
+void LiftOnto(const geom::Surface& surface, const ThicknessField& below, PlyPlan& plan) {
   for (PlyCourse& c : plan.courses) {
     for (PlyPoint& p : c.points) {
       const Eigen::Vector3d z = p.tool.linear().col(2);
-      p.tool.translation() += below.At(p.uv) * z;
+      auto up = [&](const Eigen::Vector2d& uv) {  // the normal on the head's side
+        const Eigen::Vector3d n = surface.Normal(uv);
+        return n.dot(z) < 0.0 ? Eigen::Vector3d(-n) : n;
+      };
+      p.tool.translation() += below.At(p.uv) * up(p.uv);
       for (std::size_t k = 0; k < p.boundary.size(); ++k)
-        p.boundary[k] += below.At(p.boundary_uv[k]) * z;
+        p.boundary[k] += below.At(p.boundary_uv[k]) * up(p.boundary_uv[k]);
     }
   }
 }
@@ -166,7 +172,7 @@ std::optional<LaminatePlan> PlanLaminate(const scene::Scene& scene,
   ThicknessField field(LaidBox(*scene.surface, jobs), options.thickness_cell_mm);
   out.thickness_cell_mm = field.CellMm();
   for (LaminateJob& j : jobs) {
-    LiftOnto(field, *j.plan);
+    LiftOnto(*scene.surface, field, *j.plan);
     std::tie(j.out.below_min_mm, j.out.below_max_mm) = field.AddPly(*j.plan, j.out.thickness_mm);
     j.out.plan = std::move(*j.plan);
     const PlyPlan& p = j.out.plan;
