@@ -80,9 +80,15 @@ std::pair<double, double> ThicknessField::AddPly(const PlyPlan& plan, double thi
         for (std::size_t p = 1; p < c.points.size(); ++p) {
           const PlyPoint& a = c.points[p - 1];
           const PlyPoint& b = c.points[p];
-          if (a.s_mm < g.start_mm || b.s_mm > g.end_mm) continue;
-          const Eigen::Vector2d q[4] = {a.boundary_uv[k], a.boundary_uv[k + 1],
-                                        b.boundary_uv[k + 1], b.boundary_uv[k]};
+          // The part of the step between the two poses that the piece lays: a piece that
+          // starts or ends between poses (its add or cut) lays that fraction of the step.
+          const double s0 = std::max(a.s_mm, g.start_mm), s1 = std::min(b.s_mm, g.end_mm);
+          if (s1 <= s0 || b.s_mm <= a.s_mm) continue;
+          auto at = [&](double s, std::size_t edge) -> Eigen::Vector2d {
+            const double f = (s - a.s_mm) / (b.s_mm - a.s_mm);
+            return (1 - f) * a.boundary_uv[edge] + f * b.boundary_uv[edge];
+          };
+          const Eigen::Vector2d q[4] = {at(s0, k), at(s0, k + 1), at(s1, k + 1), at(s1, k)};
           mark(q);
         }
       }
