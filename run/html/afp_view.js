@@ -19,6 +19,7 @@
   const VERDICT_RGB = {clean: [0.16, 0.62, 0.27], warning: [0.95, 0.55, 0.0],
     error: [0.86, 0.1, 0.1]};
   const HIGHLIGHT_COLOUR = 0xffd400;
+  const TOW_SHADE = 0.82;       // odd tows' colour scale
   const OFF_PART_COLOUR = 0x6a3fb5;
 
   function decodeLaid(laid, h) {
@@ -89,16 +90,19 @@
     return tows.map((t) => [t - 1, t, t]);
   }
 
-  // One mesh per ply: vertices = the strip's stations x boundaries, lifted along the normal.
+  // One mesh per ply: each ribbon its own two columns of vertices (left and right edge at
+  // every station, lifted along the normal), so neighbouring tows can be shaded apart.
   function buildPlyMesh(d, strips, order, THREE) {
     let verts = 0;
     let faces = 0;
     strips.forEach((i) => {
       const m = d.first[i + 1] - d.first[i];
-      verts += m * d.per;
-      faces += stripRibbons(d, i).length * Math.max(0, m - 1) * 2;
+      const r = stripRibbons(d, i).length;
+      verts += r * m * 2;
+      faces += r * Math.max(0, m - 1) * 2;
     });
     const pos = new Float32Array(3 * verts);
+    const vertTow = new Uint8Array(verts);
     const index = new Uint32Array(3 * faces);
     const faceStrip = new Int32Array(faces);
     const faceTow = new Uint8Array(faces);
@@ -106,45 +110,41 @@
     const stripVerts = [];
     let v = 0;
     let f = 0;
-    const lift = LIFT_MM;
+    // Writes station st's boundary b at vertex k; false when it left the surface.
+    const put = (k, st, b) => {
+      let ok = true;
+      for (let c = 0; c < 3; c++) {
+        const x = d.bound[3 * (st * d.per + b) + c] + LIFT_MM * d.normal[3 * st + c];
+        ok = ok && isFinite(x);
+        pos[3 * k + c] = x;
+      }
+      if (!ok) for (let c = 0; c < 3; c++) pos[3 * k + c] = d.tool[3 * st + c];
+      return ok;
+    };
     strips.forEach((i) => {
       const s0 = d.first[i];
       const m = d.first[i + 1] - s0;
-      stripVerts.push([i, v, m * d.per]);
-      const finite = new Uint8Array(m * d.per);
-      for (let s = 0; s < m; s++) {
-        const st = s0 + s;
-        for (let b = 0; b < d.per; b++) {
-          const src = 3 * (st * d.per + b);
-          const dst = 3 * (v + s * d.per + b);
-          let ok = true;
-          for (let c = 0; c < 3; c++) {
-            const x = d.bound[src + c] + lift * d.normal[3 * st + c];
-            ok = ok && isFinite(x);
-            pos[dst + c] = x;
-          }
-          if (!ok) for (let c = 0; c < 3; c++) pos[dst + c] = d.tool[3 * st + c];
-          finite[s * d.per + b] = ok ? 1 : 0;
-        }
-      }
+      const v0 = v;
       stripRibbons(d, i).forEach((r) => {
+        const ok = new Uint8Array(m);
+        for (let s = 0; s < m; s++) {
+          ok[s] = put(v + 2 * s, s0 + s, r[0]) & put(v + 2 * s + 1, s0 + s, r[1]);
+          vertTow[v + 2 * s] = vertTow[v + 2 * s + 1] = r[2];
+        }
         for (let s = 0; s + 1 < m; s++) {
-          const a = s * d.per + r[0];
-          const b = s * d.per + r[1];
-          const c = a + d.per;
-          const e = b + d.per;
-          const ok = finite[a] && finite[b] && finite[c] && finite[e];
+          const a = v + 2 * s;
           // A quad with a boundary off the surface: both triangles degenerate (not drawn).
-          index.set(ok ? [v + a, v + b, v + c, v + b, v + e, v + c] : [v + a, v + a, v + a,
-            v + a, v + a, v + a], 3 * f);
+          index.set(ok[s] && ok[s + 1] ? [a, a + 1, a + 2, a + 1, a + 3, a + 2] :
+            [a, a, a, a, a, a], 3 * f);
           for (let q = 0; q < 2; q++, f++) {
             faceStrip[f] = i;
             faceTow[f] = r[2];
             faceStation[f] = s0 + s;
           }
         }
+        v += 2 * m;
       });
-      v += m * d.per;
+      stripVerts.push([i, v0, v - v0]);
     });
     const geometry = new THREE.BufferGeometry();
     geometry.setAttribute('position', new THREE.BufferAttribute(pos, 3));
@@ -157,7 +157,7 @@
       polygonOffsetUnits: -4 - 4 * order});
     const mesh = new THREE.Mesh(geometry, material);
     mesh.userData = {faceStrip: faceStrip, faceTow: faceTow, faceStation: faceStation,
-      stripVerts: stripVerts, order: order};
+      stripVerts: stripVerts, vertTow: vertTow, order: order};
     return mesh;
   }
 
@@ -191,7 +191,11 @@
         } else {
           c = new THREE.Color(PLY_COLOURS[mesh.userData.order % PLY_COLOURS.length]);
         }
-        for (let k = v0; k < v0 + count; k++) attr.setXYZ(k, c.r, c.g, c.b);
+        // Odd tows a shade darker: the tows of a strip read apart in any colouring.
+        for (let k = v0; k < v0 + count; k++) {
+          const shade = mesh.userData.vertTow[k] % 2 ? TOW_SHADE : 1;
+          attr.setXYZ(k, c.r * shade, c.g * shade, c.b * shade);
+        }
       });
       attr.needsUpdate = true;
     });
