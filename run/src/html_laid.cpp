@@ -129,7 +129,9 @@ std::string ThinningNote(const LaidThinning& t, std::size_t max_values) {
            " stations drawn (a line's ends always; an interior station only where the tool "
            "point or the outer tow edges leave the straight chord by more than " +
            tol + " mm";
-    if (t.stride > 1) note += ", then every " + std::to_string(t.stride) + "th one";
+    if (t.stride > 1 && t.stations_kept < t.stations_in) {
+      note += ", then one in " + std::to_string(t.stride);
+    }
     note += ").";
   }
   if (t.outer_only) {
