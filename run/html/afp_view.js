@@ -14,7 +14,7 @@
   const LIFT_MM = 0.25;         // ribbons float this far above the surface they lie on
   const PICK_STACK_MM = 3;      // hits this close behind the first belong to one stack
   const CLICK_SLOP_PX = 4;      // a press that moves further is an orbit drag, not a pick
-  const PLY_COLOURS = [0x2ca02c, 0x1f77b4, 0xff7f0e, 0x9467bd, 0x8c564b, 0xe377c2, 0x17becf,
+  const PLY_COLOURS = [0x17becf, 0xff7f0e, 0x9467bd, 0x8c564b, 0xe377c2, 0x1f77b4, 0x2ca02c,
     0xbcbd22, 0x7f7f7f, 0x393b79, 0xad494a, 0x637939, 0x8c6d31, 0x843c39, 0x7b4173, 0x3182bd];
   const VERDICT_RGB = {clean: [0.16, 0.62, 0.27], warning: [0.95, 0.55, 0.0],
     error: [0.86, 0.1, 0.1]};
@@ -437,7 +437,7 @@
     const lineStrip = {};
     for (let i = 0; i < d.line.length; i++) lineStrip[d.line[i]] = i;
     return {
-      legend: [{css: [0.17, 0.63, 0.17], label: 'laid tows (ribbons; colour: see Laid material)'},
+      legend: [{css: [0.09, 0.75, 0.81], label: 'laid tows (ribbons; colour: see Laid material)'},
         {css: [0.42, 0.25, 0.71], label: 'off-part path', bar: true}],
       toggles: [['tows', () => view.meshes], ['off-part path', () =>
         h.viewer.part.children.filter((o) => o.name === 'afp-off-part')],
