@@ -1,6 +1,6 @@
 #pragma once
 // Files embedded in the binary at build time (run/CMakeLists.txt): three.js and its orbit
-// controls from Debian's libjs-three, and the HTML report's template and script (run/html/).
+// controls from Debian's libjs-three, and the HTML report's template and scripts (run/html/).
 
 #include <string_view>
 
@@ -10,5 +10,6 @@ std::string_view ThreeJs();
 std::string_view OrbitControlsJs();
 std::string_view ReportTemplateHtml();
 std::string_view ReportJs();
+std::string_view AfpViewJs();
 
 }  // namespace stitchsim::run
