@@ -141,7 +141,8 @@ render::TitleBar CloseUpTitle(const verify::Rule& rule, const verify::Report& re
   const verify::Finding* f = FocusFinding(rule);
   std::string l2;
   if (f != nullptr) {
-    l2 = "line " + std::to_string(f->line) + " · stitch " + std::to_string(f->stitch) + " · ";
+    l2 = "line " + std::to_string(f->line) + " · ";
+    if (f->stitch > 0) l2 += "stitch " + std::to_string(f->stitch) + " · ";
     if (!f->subject.empty()) l2 += f->subject + " ";
     const std::string unit = f->unit.empty() ? "" : " " + f->unit;
     l2 += close_up::Fmt("%.4g", f->value) + unit + " (limit " + close_up::Fmt("%.4g", f->limit) +
@@ -202,8 +203,8 @@ Status WriteCloseUps(const SnapshotInputs& in, const render::SnapshotFonts& font
   // Close-ups come as near as a few centimetres (the needles): a near clipping plane of 1 cm.
   model->vis.map.znear = std::min<float>(model->vis.map.znear, 0.01 / model->stat.extent);
   render::MjDataPtr data(mj_makeData(model.get()));
-  const CloseUpContext ctx{in.scene,    in.process, in.cell,
-                           model.get(), data.get(), &v.StitchMarks()};
+  const CloseUpContext ctx{in.scene,   in.process,       in.cell, model.get(),
+                           data.get(), &v.StitchMarks(), &v};
   for (const auto& rule : v.Rules()) {
     if (rule->Summary().errors == 0) continue;
     std::optional<CloseUpPlan> plan;

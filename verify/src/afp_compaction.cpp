@@ -110,7 +110,7 @@ class CompactionRule final : public Rule {
                             i == 1 ? h.min_mm : h.max_mm);
               return std::string(buf);
             },
-            nullptr);
+            nullptr, &pose.cross.centre);
       }
     }
   }
