@@ -19,6 +19,10 @@
 
 namespace stitchsim::verify {
 
+namespace detail {
+struct RuleMaking;  // what the factories of one MakeRules call share (detail/rule_registry.h)
+}  // namespace detail
+
 /// A closed needle window: the needles went in and came out again.
 struct WindowRecord {
   long stitch = 0;
@@ -201,7 +205,8 @@ class Rule {
  private:
   friend class Verifier;  // marks saw_input_
   // Sets close_up_ from the rule's registry entry.
-  friend std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx);
+  friend std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx,
+                                                      detail::RuleMaking& making);
 
   /// A line that had a finding: its severity so far and the finding's index (npos when the
   /// finding was not kept, past kMaxFindingsPerRule).
@@ -237,6 +242,9 @@ class Rule {
 /// Every rule that runs in `ctx` (rule_registry.h: RulePresence::kRuns), in report order, with
 /// limits from `ctx`.
 std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx);
+/// The same, the factories sharing `making` (detail/rule_registry.h: the afp.* rules' one
+/// sampler, which the verifier reads too).
+std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx, detail::RuleMaking& making);
 /// The rules MakeRules leaves out on purpose (RulePresence::kSkipped: no collision world, no
 /// timed trajectory, no payload data), in registry order, with the reason.
 std::vector<SkippedRule> SkippedRules(const RuleContext& ctx);
