@@ -69,6 +69,30 @@ std::vector<std::vector<Eigen::Vector3d>> Runs(const std::vector<Eigen::Vector3d
   return runs;
 }
 
+// Each laying line's tow boundaries within kAfpHalfFrameMm of `at` (part frame, mm) as
+// polylines on the preform top: the course's outer edges 0.35 mm thick, the others 0.12 mm.
+void AddTowBoundaries(const verify::LaidMaterial& laid, const Eigen::Vector3d& at, double base_mm,
+                      const geom::Surface& surface, const Eigen::Isometry3d& part,
+                      CloseUpPlan& plan) {
+  const float reach = static_cast<float>(kAfpHalfFrameMm + laid.tow_width_mm * laid.tows);
+  for (const verify::LaidStrip& s : laid.strips) {
+    for (int b = 0; b <= laid.tows; ++b) {
+      std::vector<Eigen::Vector3d> line;
+      for (std::uint32_t j = 0; j < s.station_count; ++j) {
+        const std::size_t i = s.first_station + j;
+        const Eigen::Vector3f& q = laid.Boundary(i, b);
+        if (!laid.stations[i].on_surface || !q.allFinite()) continue;
+        if ((laid.stations[i].tool - at.cast<float>()).norm() > reach) continue;
+        line.push_back(LiftedWorld(surface, part, q.cast<double>(), base_mm));
+      }
+      if (line.size() < 2) continue;
+      const bool edge = b == 0 || b == laid.tows;
+      plan.overlays.push_back(
+          MakeOverlay("afp_laid", kAfpLaid, edge ? 0.00035 : 0.00012, std::move(line), true));
+    }
+  }
+}
+
 }  // namespace
 
 bool PlanAfp(const CloseUpContext& ctx, const verify::Rule& rule, const verify::Finding& focus,
@@ -121,14 +145,23 @@ bool PlanAfp(const CloseUpContext& ctx, const verify::Rule& rule, const verify::
            (to_scale || focus.unit != "mm"
                 ? ""
                 : "; drawn " + Fmt("%.2g", kAfpThinnestMm) + " mm wide (enlarged)")});
-  // The laid material around it: course edges and tow centres (thinned points, blue).
-  std::vector<Eigen::Vector3d> laid;
-  for (const Eigen::Vector3d& p : DrawnNear(ctx.verifier, "afp_laid", at, kAfpHalfFrameMm)) {
-    laid.push_back(LiftedWorld(surface, part, p, base_mm));
-  }
-  if (!laid.empty()) {
-    plan.overlays.push_back(MakeOverlay("afp_laid", kAfpLaid, 0.0004, laid, false));
-    plan.legend.push_back({render::ToRgb(kAfpLaid), "laid tows: course edges and centres"});
+  // The laid material around it: each line's tow boundaries near the finding (course edges
+  // thicker), else the verifier's thinned course edge and centre points.
+  const std::size_t before = plan.overlays.size();
+  if (ctx.verifier != nullptr)
+    AddTowBoundaries(ctx.verifier->Laid(), at, base_mm, surface, part, plan);
+  if (plan.overlays.size() > before) {
+    plan.legend.push_back(
+        {render::ToRgb(kAfpLaid), "laid tows: course edges (thick), tow boundaries"});
+  } else {
+    std::vector<Eigen::Vector3d> laid;
+    for (const Eigen::Vector3d& p : DrawnNear(ctx.verifier, "afp_laid", at, kAfpHalfFrameMm)) {
+      laid.push_back(LiftedWorld(surface, part, p, base_mm));
+    }
+    if (!laid.empty()) {
+      plan.overlays.push_back(MakeOverlay("afp_laid", kAfpLaid, 0.0004, laid, false));
+      plan.legend.push_back({render::ToRgb(kAfpLaid), "laid tows: course edges and centres"});
+    }
   }
   return true;
 }

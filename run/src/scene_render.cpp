@@ -201,6 +201,18 @@ Status RenderScene(const LoadedScene& ls, const RenderRequest& req, DiagnosticSi
     // From the far side of the part (the robot works from the rail side, -y).
     view.azimuth_deg = -60.0;
     view.elevation_deg = -55.0;
+    // Laid tows on a standing skin (ribbons whose mean normal is within 45 deg of level):
+    // from their side of the part, down that normal, from above and along the span past the arm.
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    for (const auto& o : overlays) {
+      for (const auto& n : o.normals) normal += n;
+    }
+    if (normal.norm() > 1e-9 && std::abs(normal.normalized().z()) < 0.7) {  // a standing skin
+      const Eigen::Vector3d forward = -normal.normalized() + Eigen::Vector3d(1.0, 0.0, -0.9);
+      const render::CameraView along = render::LookAlong(view.lookat_m, forward, view.distance_m);
+      view.azimuth_deg = along.azimuth_deg;
+      view.elevation_deg = along.elevation_deg;
+    }
   }
   if (close_up) {
     // Look along the tool y axis (the stitch direction), low, so both needles and the
