@@ -134,7 +134,7 @@ class CompactionRule final : public Rule {
                             values[i], kMeasures[i].unit, limit_text, h.min_mm, h.max_mm);
               return std::string(buf);
             },
-            nullptr);
+            nullptr, &pose.cross.centre);
       }
     }
   }

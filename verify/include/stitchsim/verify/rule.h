@@ -153,12 +153,15 @@ class Rule {
   /// Counts one checked item and records a finding when `value` exceeds a limit
   /// (upper-bound check). `what()` names the measured quantity; it is only called for a
   /// finding, so the hot path formats nothing. Returns the severity recorded, if any.
+  /// `position` (part frame, mm; may be null): where the value was measured, for a finding
+  /// made without a sample (afp.gap's edge point); else the sample's tool point.
   template <typename WhatFn>
   std::optional<FindingSeverity> CheckUpper(double value, int line, long stitch,
                                             const std::string& subject, WhatFn&& what,
-                                            const trace::TraceSample* sample) {
+                                            const trace::TraceSample* sample,
+                                            const Eigen::Vector3d* position = nullptr) {
     const std::optional<FindingSeverity> sev = Classify(value, line, stitch, sample);
-    if (sev) RecordExceeded(*sev, value, line, stitch, subject, what(), sample);
+    if (sev) RecordExceeded(*sev, value, line, stitch, subject, what(), sample, position);
     return sev;
   }
   void Counted() { ++summary_.checked; }
@@ -167,7 +170,7 @@ class Rule {
                                           const trace::TraceSample* sample);
   void RecordExceeded(FindingSeverity severity, double value, int line, long stitch,
                       const std::string& subject, const std::string& what,
-                      const trace::TraceSample* sample);
+                      const trace::TraceSample* sample, const Eigen::Vector3d* position = nullptr);
   /// Records a finding directly (for yes/no rules). Findings are one per line: a second
   /// finding on a line already reported merges into it (the worse one's value, subject and
   /// message stay; error beats warning, then the larger value over its limit).
