@@ -8,8 +8,13 @@
 namespace stitchsim::planner {
 namespace {
 
-/// True when `x` lies inside the quad a0 a1 b1 b0 (either winding) or on its edges (within
-/// 1e-9 mm), so cells on the line two abutting tows share are covered by both.
+/// How far outside a tow's quad a cell centre still counts as covered, mm: abutting courses
+/// leave seams of up to 1e-4 mm (the walk's rounding; the wing's plies), and a cell centre in
+/// such a seam would read as a trench of one ply through the field.
+constexpr double kQuadTolMm = 0.01;
+
+/// True when `x` lies inside the quad a0 a1 b1 b0 (either winding) or within kQuadTolMm of
+/// it, so cells on the line two abutting tows share are covered by both.
 bool InsideTowQuad(const Eigen::Vector2d (&q)[4], const Eigen::Vector2d& x) {
   int positive = 0, negative = 0;
   for (int k = 0; k < 4; ++k) {
@@ -18,8 +23,8 @@ bool InsideTowQuad(const Eigen::Vector2d (&q)[4], const Eigen::Vector2d& x) {
     const double len = e.norm();
     if (len <= 0.0) continue;
     const double side = (e.x() * r.y() - e.y() * r.x()) / len;  // signed distance, mm
-    if (side > 1e-9) ++positive;
-    if (side < -1e-9) ++negative;
+    if (side > kQuadTolMm) ++positive;
+    if (side < -kQuadTolMm) ++negative;
   }
   return positive == 0 || negative == 0;
 }
