@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "plan_progress.h"
 #include "stitchsim/common/units.h"
+#include "stitchsim/planner/laminate_planner.h"
 #include "stitchsim/planner/ply_planner.h"
 
 namespace stitchsim::app {
@@ -83,6 +84,14 @@ int RunPlanPly(const PlanPlyArgs& a) {
     plans.push_back(std::move(*plan));
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
+  // Several plies in one programme: each laid on the ones before it (as plan laminate).
+  std::vector<planner::PlyPlan*> stack;
+  std::vector<double> thickness;
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    stack.push_back(&plans[i]);
+    thickness.push_back(specs[i]->thickness_mm);
+  }
+  if (plans.size() > 1) planner::StackPlies(*scene->surface, stack, thickness, 2.0);
   std::vector<const planner::PlyPlan*> ptrs;
   for (const auto& p : plans) ptrs.push_back(&p);
   const int written = WriteProgramAndCsv(
