@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "run_test_support.h"
 #include "stitchsim/common/units.h"
 
 namespace stitchsim::run {
@@ -45,13 +46,7 @@ std::vector<T> Decode(const nlohmann::json& text) {
   return out;
 }
 
-verify::LaidMaterial Empty() {
-  verify::LaidMaterial m;
-  m.tows = kTows;
-  m.tow_width_mm = kWidthMm;
-  m.spacing_mm = 3.0;
-  return m;
-}
+verify::LaidMaterial Empty() { return testing::EmptyLaid(kTows, kWidthMm, 3.0); }
 
 // Adds a strip of `n` stations along a centre line given by `at(f)` (point, unit left normal
 // in the plane), tow edges at offsets (k / 2 - b) w to its left; tows 2 and 3 laid.

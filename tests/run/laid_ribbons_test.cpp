@@ -9,19 +9,15 @@
 #include <cmath>
 #include <limits>
 
+#include "run_test_support.h"
+
 namespace stitchsim::run {
 namespace {
 
 constexpr int kTows = 16;
 constexpr double kW = 6.35;
 
-verify::LaidMaterial Empty() {
-  verify::LaidMaterial m;
-  m.tows = kTows;
-  m.tow_width_mm = kW;
-  m.spacing_mm = 25.0;
-  return m;
-}
+verify::LaidMaterial Empty() { return testing::EmptyLaid(kTows, kW, 25.0); }
 
 // A line of ply `ply` (its course 1) laying `tows`, `stations` stations 25 mm apart along x;
 // `joined`: it starts on the previous line's last station (shared, as the verifier keeps it).
