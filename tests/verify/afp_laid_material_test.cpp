@@ -80,6 +80,10 @@ TEST(AfpLaidMaterial, AStraightCourseOnAPlaneHasItsTowBoundariesInClosedForm) {
     EXPECT_GE(m.strips[0].station_count, 7U);
     // Adds on line 10 and cuts on line 11, one per tow.
     ASSERT_EQ(m.events.size(), 32U);
+    // The bytes docs/report-format.md gives: 28 + 17 * 20 a station, 40 + 16 * 8 a strip.
+    EXPECT_EQ(m.BytesPerStation(), 368U);
+    EXPECT_EQ(m.BytesPerStrip(), 168U);
+    EXPECT_GE(m.BytesUsed(), m.stations.size() * 368 + m.strips.size() * 168);
   });
 }
 

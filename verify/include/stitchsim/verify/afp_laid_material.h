@@ -10,7 +10,7 @@
 //
 // Memory: stations are stored once, flat: a strip that continues the previous strip of its
 // course (its line starts where the previous one ended) shares that strip's last station.
-// A station costs sizeof(LaidStation) + (k + 1) * 20 bytes (k = 16: 372 bytes); a strip
+// A station costs sizeof(LaidStation) + (k + 1) * 20 bytes (k = 16: 368 bytes); a strip
 // sizeof(LaidStrip) + 8 k bytes (k = 16: 168). BytesUsed() sums them.
 
 #include <Eigen/Core>
