@@ -214,6 +214,11 @@ json HtmlData(const HtmlInputs& in, const HtmlLimits& limits, std::string& error
 }
 
 std::string HtmlPage(const json& data, std::string& error) {
+  return HtmlPageOf(ReportTemplateHtml(), ReportJs(), data, error);
+}
+
+std::string HtmlPageOf(std::string_view page_template, std::string_view app_js, const json& data,
+                       std::string& error) {
   std::string text = data.dump(-1, ' ', false, json::error_handler_t::replace);
   // Inside <script>: "</" would end the element early.
   std::string safe;
@@ -226,7 +231,6 @@ std::string HtmlPage(const json& data, std::string& error) {
       safe += text[i];
     }
   }
-  const std::string_view page = ReportTemplateHtml();
   struct Part {
     std::string_view marker;
     std::string open;
@@ -235,10 +239,10 @@ std::string HtmlPage(const json& data, std::string& error) {
   const Part parts[] = {
       {"<!--STITCHSIM:THREE-->", "<script>", ThreeJs()},
       {"<!--STITCHSIM:ORBIT-->", "<script>", OrbitControlsJs()},
-      {"<!--STITCHSIM:APP-->", "<script>", ReportJs()},
+      {"<!--STITCHSIM:APP-->", "<script>", app_js},
       {"<!--STITCHSIM:DATA-->", "<script id=\"stitchsim-data\" type=\"application/json\">", safe},
   };
-  std::string out(page);
+  std::string out(page_template);
   for (const Part& p : parts) {
     if (p.body.find("</script") != std::string_view::npos) {
       error = "an embedded script contains </script> (" + std::string(p.marker) + ")";

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -42,6 +43,11 @@ nlohmann::json HtmlData(const HtmlInputs& in, const HtmlLimits& limits, std::str
 /// The page: the template with three.js, the app and `data` put in. Throws nothing; returns
 /// "" with `error` set when an asset cannot be embedded safely.
 std::string HtmlPage(const nlohmann::json& data, std::string& error);
+
+/// The same for any page: `page_template` with its four markers (<!--STITCHSIM:THREE-->,
+/// ORBIT, APP, DATA) replaced by three.js, its orbit controls, `app_js` and `data`.
+std::string HtmlPageOf(std::string_view page_template, std::string_view app_js,
+                       const nlohmann::json& data, std::string& error);
 
 /// Writes the page whole or not at all. Errors: "html" (the data cannot be made), "internal"
 /// (an asset cannot be embedded: a bug), "io-write" (the file).
