@@ -177,7 +177,7 @@
       lines[s.course < 0 ? lastPly : plyOf(s.course)].add(lineOf(s.points, COLORS[which]));
     }
     path.visits.forEach((v, i) => {
-      numbers[plyOf(v.course)].add(label(String(i + 1), v.start, bounds.size / 25,
+      numbers[plyOf(v.course)].add(label(String(i + 1), v.start, bounds.size / 14,
                                          which === 'before' ? '#c62828' : '#1f5fbf'));
     });
     return { lines, numbers };
