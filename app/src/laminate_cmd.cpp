@@ -37,6 +37,7 @@ void PrintLaminate(const scene::Scene& scene, const planner::LaminatePlan& plan,
         q.courses.size(), q.tow_segments, q.events / 2, q.events / 2, q.laid_length_mm,
         q.laid_length_mm / speed, speed, p.stagger_shift_mm, p.same_angle_index + 1, p.below_min_mm,
         p.below_max_mm, q.min_radius_mm, q.max_gap_mm, q.max_overlap_mm, q.bare_pct, q.doubled_pct);
+    PrintTowPieceFixes(q, "    ");
     for (const auto& f : q.findings)
       std::printf("error[%s]: %s (the cell cannot lay this ply as planned)\n", f.code.c_str(),
                   f.message.c_str());

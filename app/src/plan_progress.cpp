@@ -1,6 +1,7 @@
 #include "plan_progress.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <utility>
 
 namespace stitchsim::app {
@@ -9,6 +10,15 @@ namespace {
 // Without a terminal, nothing from a run shorter than this (s): a short plan stays out of the log.
 constexpr double kQuietRunS = 1.0;
 }  // namespace
+
+void PrintTowPieceFixes(const planner::PlyPlan& plan, const char* indent) {
+  const planner::TowPieceFixes& fix = plan.fixes;
+  std::printf(
+      "%stow pieces: shortest %.1f mm (minimum %g mm, 0: none), %d short pieces dropped, %d "
+      "extended; restarts (minimum %g mm): %d bridged, %d moved\n",
+      indent, plan.shortest_piece_mm, plan.min_tow_length_mm, fix.pieces_dropped,
+      fix.pieces_extended, plan.min_restart_mm, fix.restarts_bridged, fix.restarts_moved);
+}
 
 void AddQuietFlag(CLI::App& cmd, bool& quiet) {
   cmd.add_flag("--quiet", quiet,

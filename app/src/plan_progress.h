@@ -9,11 +9,16 @@
 
 #include "stitchsim/common/progress.h"
 #include "stitchsim/planner/plan_progress.h"
+#include "stitchsim/planner/ply_planner.h"
 
 namespace stitchsim::app {
 
 /// Adds `--quiet` (no progress on stderr) to a subcommand.
 void AddQuietFlag(CLI::App& cmd, bool& quiet);
+
+/// One line on stdout, after `indent`: a ply plan's shortest tow piece and what the planner
+/// did to the pieces and restarts the head cannot lay (plan ply, and per ply plan laminate).
+void PrintTowPieceFixes(const planner::PlyPlan& plan, const char* indent);
 
 /// One run's progress line: "plan raster: 40 % (...)". Without a terminal a run shorter than
 /// a second prints nothing at all (a short plan stays out of the log); on one, a bar and a

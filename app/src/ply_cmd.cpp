@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "plan_progress.h"
 #include "stitchsim/common/units.h"
+#include "stitchsim/planner/laminate_planner.h"
 #include "stitchsim/planner/ply_planner.h"
 
 namespace stitchsim::app {
@@ -40,12 +41,7 @@ void PrintPly(const scene::Scene& scene, const planner::PlyPlan& plan, double wa
       scene.head.afp.layup_speed_mm_s, plan.min_radius_mm, scene.head.afp.min_steering_radius_mm,
       plan.max_gap_mm, plan.max_overlap_mm, plan.bare_pct, plan.doubled_pct, plan.laid_outside_pct,
       wall_s, a.output.c_str(), a.tows_csv.empty() ? "" : ", ", a.tows_csv.c_str());
-  const planner::TowPieceFixes& fix = plan.fixes;
-  std::printf(
-      "  tow pieces: shortest %.1f mm (minimum %g mm, 0: none), %d short pieces dropped, %d "
-      "extended; restarts (minimum %g mm): %d bridged, %d moved\n",
-      plan.shortest_piece_mm, plan.min_tow_length_mm, fix.pieces_dropped, fix.pieces_extended,
-      plan.min_restart_mm, fix.restarts_bridged, fix.restarts_moved);
+  PrintTowPieceFixes(plan, "  ");
   for (const auto& f : plan.findings)
     std::printf("error[%s]: %s (the cell cannot lay this ply as planned)\n", f.code.c_str(),
                 f.message.c_str());
@@ -88,6 +84,14 @@ int RunPlanPly(const PlanPlyArgs& a) {
     plans.push_back(std::move(*plan));
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
+  // Several plies in one programme: each laid on the ones before it (as plan laminate).
+  std::vector<planner::PlyPlan*> stack;
+  std::vector<double> thickness;
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    stack.push_back(&plans[i]);
+    thickness.push_back(specs[i]->thickness_mm);
+  }
+  if (plans.size() > 1) planner::StackPlies(*scene->surface, stack, thickness, 2.0);
   std::vector<const planner::PlyPlan*> ptrs;
   for (const auto& p : plans) ptrs.push_back(&p);
   const int written = WriteProgramAndCsv(

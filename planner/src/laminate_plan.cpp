@@ -111,10 +111,10 @@ void PlanJobs(const scene::Scene& scene, std::vector<LaminateJob>& jobs,
 }
 
 /// The (u, v) box of every tow edge of the plans (the field's extent), inside the domain.
-geom::Domain2 LaidBox(const geom::Surface& surface, const std::vector<LaminateJob>& jobs) {
+geom::Domain2 LaidBox(const geom::Surface& surface, const std::vector<PlyPlan*>& plans) {
   geom::Domain2 box{Eigen::Vector2d::Constant(INFINITY), Eigen::Vector2d::Constant(-INFINITY)};
-  for (const LaminateJob& j : jobs)
-    for (const PlyCourse& c : j.plan->courses)
+  for (const PlyPlan* plan : plans)
+    for (const PlyCourse& c : plan->courses)
       for (const PlyPoint& p : c.points)
         for (const Eigen::Vector2d& b : p.boundary_uv) {
           box.min = box.min.cwiseMin(b);
@@ -126,14 +126,20 @@ geom::Domain2 LaidBox(const geom::Surface& surface, const std::vector<LaminateJo
   return box;
 }
 
-/// Every pose and tow edge of `plan` moved along its tool z by the thickness below it.
-void LiftOnto(const ThicknessField& below, PlyPlan& plan) {
+/// Every pose and tow edge of `plan` moved along the surface normal at its foot by the
+/// thickness below it: the roller's contact on the raised surface (an inclined head, whose tool
+/// z leans from the normal, is not raised along its axis).
+void LiftOnto(const geom::Surface& surface, const ThicknessField& below, PlyPlan& plan) {
   for (PlyCourse& c : plan.courses) {
     for (PlyPoint& p : c.points) {
       const Eigen::Vector3d z = p.tool.linear().col(2);
-      p.tool.translation() += below.At(p.uv) * z;
+      auto up = [&](const Eigen::Vector2d& uv) {  // the normal on the head's side
+        const Eigen::Vector3d n = surface.Normal(uv);
+        return n.dot(z) < 0.0 ? Eigen::Vector3d(-n) : n;
+      };
+      p.tool.translation() += below.At(p.uv) * up(p.uv);
       for (std::size_t k = 0; k < p.boundary.size(); ++k)
-        p.boundary[k] += below.At(p.boundary_uv[k]) * z;
+        p.boundary[k] += below.At(p.boundary_uv[k]) * up(p.boundary_uv[k]);
     }
   }
 }
@@ -163,11 +169,17 @@ std::optional<LaminatePlan> PlanLaminate(const scene::Scene& scene,
 
   LaminatePlan out;
   out.laminate = laminate.name;
-  ThicknessField field(LaidBox(*scene.surface, jobs), options.thickness_cell_mm);
-  out.thickness_cell_mm = field.CellMm();
+  std::vector<PlyPlan*> plans;
+  std::vector<double> thickness;
   for (LaminateJob& j : jobs) {
-    LiftOnto(field, *j.plan);
-    std::tie(j.out.below_min_mm, j.out.below_max_mm) = field.AddPly(*j.plan, j.out.thickness_mm);
+    plans.push_back(&*j.plan);
+    thickness.push_back(j.out.thickness_mm);
+  }
+  const auto below = StackPlies(*scene.surface, plans, thickness, options.thickness_cell_mm,
+                                &out.max_thickness_mm, &out.thickness_cell_mm);
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    LaminateJob& j = jobs[i];
+    std::tie(j.out.below_min_mm, j.out.below_max_mm) = below[i];
     j.out.plan = std::move(*j.plan);
     const PlyPlan& p = j.out.plan;
     out.courses += static_cast<int>(p.courses.size());
@@ -176,8 +188,22 @@ std::optional<LaminatePlan> PlanLaminate(const scene::Scene& scene,
     out.laid_length_mm += p.laid_length_mm;
     out.plies.push_back(std::move(j.out));
   }
-  out.max_thickness_mm = field.MaxMm();
   return out;
+}
+
+std::vector<std::pair<double, double>> StackPlies(const geom::Surface& surface,
+                                                  const std::vector<PlyPlan*>& plans,
+                                                  const std::vector<double>& thickness_mm,
+                                                  double cell_mm, double* max_mm, double* cell) {
+  ThicknessField field(LaidBox(surface, plans), cell_mm);
+  std::vector<std::pair<double, double>> below;
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    LiftOnto(surface, field, *plans[i]);
+    below.push_back(field.AddPly(*plans[i], thickness_mm[i]));
+  }
+  if (max_mm != nullptr) *max_mm = field.MaxMm();
+  if (cell != nullptr) *cell = field.CellMm();
+  return below;
 }
 
 void WriteLaminateProgram(const LaminatePlan& plan, const scene::Scene& scene,

@@ -8,8 +8,13 @@
 namespace stitchsim::planner {
 namespace {
 
-/// True when `x` lies inside the quad a0 a1 b1 b0 (either winding) or on its edges (within
-/// 1e-9 mm), so cells on the line two abutting tows share are covered by both.
+/// How far outside a tow's quad a cell centre still counts as covered, mm: abutting courses
+/// leave seams of up to 1e-4 mm (the walk's rounding; the wing's plies), and a cell centre in
+/// such a seam would read as a trench of one ply through the field.
+constexpr double kQuadTolMm = 0.01;
+
+/// True when `x` lies inside the quad a0 a1 b1 b0 (either winding) or within kQuadTolMm of
+/// it, so cells on the line two abutting tows share are covered by both.
 bool InsideTowQuad(const Eigen::Vector2d (&q)[4], const Eigen::Vector2d& x) {
   int positive = 0, negative = 0;
   for (int k = 0; k < 4; ++k) {
@@ -18,8 +23,8 @@ bool InsideTowQuad(const Eigen::Vector2d (&q)[4], const Eigen::Vector2d& x) {
     const double len = e.norm();
     if (len <= 0.0) continue;
     const double side = (e.x() * r.y() - e.y() * r.x()) / len;  // signed distance, mm
-    if (side > 1e-9) ++positive;
-    if (side < -1e-9) ++negative;
+    if (side > kQuadTolMm) ++positive;
+    if (side < -kQuadTolMm) ++negative;
   }
   return positive == 0 || negative == 0;
 }
@@ -80,9 +85,15 @@ std::pair<double, double> ThicknessField::AddPly(const PlyPlan& plan, double thi
         for (std::size_t p = 1; p < c.points.size(); ++p) {
           const PlyPoint& a = c.points[p - 1];
           const PlyPoint& b = c.points[p];
-          if (a.s_mm < g.start_mm || b.s_mm > g.end_mm) continue;
-          const Eigen::Vector2d q[4] = {a.boundary_uv[k], a.boundary_uv[k + 1],
-                                        b.boundary_uv[k + 1], b.boundary_uv[k]};
+          // The part of the step between the two poses that the piece lays: a piece that
+          // starts or ends between poses (its add or cut) lays that fraction of the step.
+          const double s0 = std::max(a.s_mm, g.start_mm), s1 = std::min(b.s_mm, g.end_mm);
+          if (s1 <= s0 || b.s_mm <= a.s_mm) continue;
+          auto at = [&](double s, std::size_t edge) -> Eigen::Vector2d {
+            const double f = (s - a.s_mm) / (b.s_mm - a.s_mm);
+            return (1 - f) * a.boundary_uv[edge] + f * b.boundary_uv[edge];
+          };
+          const Eigen::Vector2d q[4] = {at(s0, k), at(s0, k + 1), at(s1, k + 1), at(s1, k)};
           mark(q);
         }
       }

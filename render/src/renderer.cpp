@@ -139,7 +139,28 @@ void OffscreenRenderer::AddOverlays(const std::vector<Overlay>& overlays, const 
       im.overlay_labels.push_back(o.label);
       ++im.scn.ngeom;
     };
-    if (o.polyline) {
+    if (o.polyline && !o.normals.empty() && o.normals.size() == o.points_m.size()) {
+      for (std::size_t i = 0; i + 1 < o.points_m.size(); ++i) {
+        const Eigen::Vector3d d = o.points_m[i + 1] - o.points_m[i];
+        const Eigen::Vector3d n = o.normals[i] + o.normals[i + 1];
+        const Eigen::Vector3d across = n.cross(d);
+        if (d.norm() < 1e-9 || across.norm() < 1e-12) continue;
+        // Box axes: x across, y along the segment, z its normal (columns: local to world).
+        Eigen::Matrix3d axes;
+        axes.col(1) = d.normalized();
+        axes.col(0) = across.normalized();
+        axes.col(2) = axes.col(0).cross(axes.col(1));
+        if (im.scn.ngeom >= im.scn.maxgeom) break;  // the scene is full
+        add(mjGEOM_BOX, 0.5 * (o.points_m[i] + o.points_m[i + 1]), nullptr);
+        mjvGeom* g = im.scn.geoms + im.scn.ngeom - 1;
+        g->size[0] = static_cast<float>(o.radius_m);
+        g->size[1] = static_cast<float>(0.5 * d.norm());
+        g->size[2] = static_cast<float>(0.5 * o.ribbon_thickness_m);
+        for (int r = 0; r < 3; ++r) {
+          for (int c = 0; c < 3; ++c) g->mat[3 * r + c] = static_cast<float>(axes(r, c));
+        }
+      }
+    } else if (o.polyline) {
       for (std::size_t i = 0; i + 1 < o.points_m.size(); ++i) {
         if ((o.points_m[i + 1] - o.points_m[i]).norm() < 1e-9) continue;
         const bool last = i + 2 == o.points_m.size();

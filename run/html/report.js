@@ -21,7 +21,7 @@
   const state = {
     data: null, lines: 1, line: 1, poses: null, stitches: null, path: null, findings: [],
     viewer: null, plots: [], filter: {rule: '', severity: ''}, shownFindings: 0,
-    selectedFinding: -1, playing: false, playPos: 0, playTime: 0, lastFrame: 0, errors: [],
+    selectedFinding: -1, afp: null, playing: false, playPos: 0, playTime: 0, lastFrame: 0, errors: [],
   };
 
   // ---------- small helpers ----------
@@ -615,6 +615,7 @@
       legend.push({css: c, label: VERDICT_NAMES[v] + ' (' + fmt(count) + shown + ')'});
     }
     list(data.drawings).forEach((d, i) => {
+      if (data.laid && d.label === 'afp_laid') return;  // drawn as ribbons (afp_view.js)
       const pos = typed(d.positions, Float32Array, 'drawings[' + i + '].positions');
       const c = list(d.rgba).length === 4 ? d.rgba : [0.2, 0.4, 0.9, 1];
       const points = pointsObject(pos, new THREE.Color(c[0], c[1], c[2]), 2, disc, false);
@@ -801,6 +802,7 @@
     const rgb = (c) => 'rgb(' + c.slice(0, 3).map((x) => Math.round(255 * x)).join(',') + ')';
     const hex = (n) => '#' + ('00000' + n.toString(16)).slice(-6);
     viewer.legend.forEach((l) => box.appendChild(item(rgb(l.css), l.label, false)));
+    if (state.afp) state.afp.legend.forEach((l) => box.appendChild(item(rgb(l.css), l.label, l.bar)));
     box.appendChild(item(hex(PATH_DONE_COLOUR), 'path done', true));
     box.appendChild(item(hex(PATH_COLOUR), 'path to come', true));
     box.appendChild(item(hex(TOOL_COLOUR), 'tool point', false));
@@ -815,9 +817,9 @@
       onclick: () => fitPart(viewer)}));
     box.appendChild(el('button', {type: 'button', text: 'Fit cell',
       onclick: () => fitCell(viewer)}));
-    const toggle = (label, objects) => {
-      const input = el('input', {type: 'checkbox'});
-      input.checked = true;
+    const toggle = (label, objects, off) => {
+      const input = el('input', {type: 'checkbox', 'data-toggle': label});
+      input.checked = !off;
       input.addEventListener('change', () => {
         objects().forEach((o) => { o.visible = input.checked; });
         viewer.requestRender();
@@ -834,6 +836,7 @@
     if (byName('stitches-')().length) toggle('stitches', byName('stitches-'));
     toggle('path', () => [viewer.path.full, viewer.path.done]);
     if (list(state.data.drawings).length) toggle('drawings', byName('drawing-'));
+    if (state.afp) state.afp.toggles.forEach(([label, objects, off]) => toggle(label, objects, off));
   }
 
   // ---------- plots: one per series, min/max envelope per bucket along the programme ----------
@@ -1051,6 +1054,7 @@
     setPlaying(false);
     if (f.line > 0) setLine(f.line);  // line 0: not tied to a line
     if (state.viewer) guard('showing the finding', () => focusFinding(state.viewer, f));
+    if (state.afp) guard('showing the finding\'s tow', () => state.afp.onFinding(f));
   }
 
   const SPEEDS = [['l10', '10 lines/s'], ['l100', '100 lines/s'], ['l1000', '1,000 lines/s'],
@@ -1114,6 +1118,20 @@
     window.requestAnimationFrame(loop);
   }
 
+  // The laid-tow layer (afp_view.js, inlined after this file) with the helpers it shares.
+  function startAfpView(data) {
+    if (typeof window.stitchsimAfpView !== 'function') throw new Error('afp_view.js is missing');
+    const viewer = state.viewer;
+    return window.stitchsimAfpView({
+      data: data, viewer: viewer, findings: state.findings, typed: typed,
+      expectLength: expectLength, el: el, fmt: fmt, $: $, guard: guard, setLine: setLine,
+      path: () => state.path,
+      frame: (p, r, dir) => frameSphere(viewer, partPointWorld(viewer, p), r,
+        dir ? new THREE.Vector3(dir[0], dir[1], dir[2])
+          .transformDirection(viewer.part.matrixWorld) : null),
+    });
+  }
+
   // ---------- start ----------
   function main() {
     const data = guard('reading the report data', readData);
@@ -1138,6 +1156,7 @@
     state.poses = programme.poses;
     buildTimeline();
     state.viewer = guard('the 3D view', () => createViewer(data));
+    if (state.viewer && data.laid) state.afp = guard('the laid tows', () => startAfpView(data));
     guard('the plots', () => buildPlots(data));
     window.addEventListener('resize', () => state.plots.forEach(drawPlot));
     // Start where the work starts: the first recorded pose (line 1 is often still at home).
@@ -1164,6 +1183,7 @@
     goTo: (line) => setLine(line),
     goToFinding: goToFinding,
     get viewer() { return state.viewer; },  // for debugging in the browser console
+    get afp() { return state.afp ? state.afp.api : null; },  // laid tows (afp_view.js)
   };
   window.addEventListener('error', (e) => showError('script error: ' + e.message));
   if (document.readyState === 'loading') document.addEventListener('DOMContentLoaded', main);

@@ -303,7 +303,10 @@ bool PlanNeedles(const CloseUpContext& ctx, const verify::Rule& rule, const trac
 
 const verify::Finding* FocusFinding(const verify::Rule& rule) {
   const auto& f = rule.Summary().findings;
-  const int line = rule.WorstSample() ? rule.WorstSample()->source_line : -1;
+  // The worst sample's line; afp.* rules judge lines, not samples: their worst line.
+  const bool by_line = !rule.WorstSample() && rule.CloseUp() == verify::CloseUpFamily::kAfp;
+  const int line = rule.WorstSample() ? rule.WorstSample()->source_line
+                                      : (by_line ? rule.Summary().worst_line : -1);
   for (const auto& x : f) {
     if (x.line == line && x.severity == verify::FindingSeverity::kError) return &x;
   }
@@ -319,6 +322,17 @@ bool PlanCloseUp(const CloseUpContext& ctx, const verify::Rule& rule,
   using verify::CloseUpFamily;
   const CloseUpFamily family = rule.CloseUp();
   const auto& s = rule.WorstSample();
+  if (family == CloseUpFamily::kAfp) {
+    // The worst finding's place on the part from above (close_up_afp.cpp), else the head.
+    const verify::Finding* focus = FocusFinding(rule);
+    if (focus != nullptr && focus->position_mm) {
+      CloseUpPlan p;
+      p.family = family;
+      if (!close_up::PlanAfp(ctx, rule, *focus, p, error)) return false;
+      plan = std::move(p);
+      return true;
+    }
+  }
   if (family == CloseUpFamily::kNone || (!s && family != CloseUpFamily::kConstraint)) return true;
   CloseUpPlan p;
   p.family = family;

@@ -1,6 +1,6 @@
 #pragma once
 // Files embedded in the binary at build time (run/CMakeLists.txt): three.js and its orbit
-// controls from Debian's libjs-three, and the HTML report's template and script (run/html/).
+// controls from Debian's libjs-three, and the HTML report's template and scripts (run/html/).
 
 #include <string_view>
 
@@ -10,7 +10,11 @@ std::string_view ThreeJs();
 std::string_view OrbitControlsJs();
 std::string_view ReportTemplateHtml();
 std::string_view ReportJs();
+<<<<<<< HEAD
 std::string_view SequenceTemplateHtml();  ///< `sequence --html`'s page (html/sequence.html)
 std::string_view SequenceJs();            ///< and its script (html/sequence.js)
+=======
+std::string_view AfpViewJs();
+>>>>>>> main
 
 }  // namespace stitchsim::run

@@ -10,6 +10,7 @@
 #include "stitchsim/common/files.h"
 #include "stitchsim/render/cell_export.h"
 #include "stitchsim/render/scene_model.h"
+#include "stitchsim/run/html_laid.h"
 #include "stitchsim/run/snapshots.h"
 #include "stitchsim/sim/robot_model.h"
 
@@ -209,6 +210,7 @@ json HtmlData(const HtmlInputs& in, const HtmlLimits& limits, std::string& error
               {"stitches", PageStitchesJson(*in.verifier, limits.max_stitches)},
               {"path", std::move(path)},
               {"drawings", PageDrawingsJson(*in.verifier)},
+              {"laid", PageLaidJson(in.verifier->Laid(), limits.max_laid_values)},
               {"poses", std::move(poses)},
               {"series", PageSeriesJson(*in.verifier)}};
 }
@@ -239,7 +241,12 @@ std::string HtmlPageOf(std::string_view page_template, std::string_view app_js, 
   const Part parts[] = {
       {"<!--STITCHSIM:THREE-->", "<script>", ThreeJs()},
       {"<!--STITCHSIM:ORBIT-->", "<script>", OrbitControlsJs()},
+<<<<<<< HEAD
       {"<!--STITCHSIM:APP-->", "<script>", app_js},
+=======
+      {"<!--STITCHSIM:APP-->", "<script>", ReportJs()},
+      {"<!--STITCHSIM:AFP-->", "<script>", AfpViewJs()},
+>>>>>>> main
       {"<!--STITCHSIM:DATA-->", "<script id=\"stitchsim-data\" type=\"application/json\">", safe},
   };
   std::string out(page_template);

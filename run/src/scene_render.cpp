@@ -104,7 +104,7 @@ render::CameraView RenderFrameView(const std::vector<Eigen::Vector3d>& points_m,
 }
 
 // What to draw: the scene's paths, or the request's point sets instead; `radius_scale` gets
-// each overlay's radius factor.
+// each overlay's radius factor (-1: the set's own width, no view minimum).
 std::vector<render::Overlay> RequestOverlays(const LoadedScene& ls, const RenderRequest& req,
                                              const Eigen::Isometry3d& part_world, bool close_up,
                                              std::vector<double>& radius_scale) {
@@ -128,8 +128,11 @@ std::vector<render::Overlay> RequestOverlays(const LoadedScene& ls, const Render
       }
       o.points_m.push_back(part_world * (q / 1000.0));
     }
+    for (const auto& n : set.normals_part) o.normals.push_back(part_world.linear() * n);
+    // A set of its own width is kept at it (negative: no view minimum, see RenderScene).
+    if (set.radius_mm > 0) o.radius_m = set.radius_mm / 1000.0;
     overlays.push_back(std::move(o));
-    radius_scale.push_back(set.radius_scale);
+    radius_scale.push_back(set.radius_mm > 0 ? -1.0 : set.radius_scale);
   }
   return overlays;
 }
@@ -198,6 +201,18 @@ Status RenderScene(const LoadedScene& ls, const RenderRequest& req, DiagnosticSi
     // From the far side of the part (the robot works from the rail side, -y).
     view.azimuth_deg = -60.0;
     view.elevation_deg = -55.0;
+    // Laid tows on a standing skin (ribbons whose mean normal is within 45 deg of level):
+    // from their side of the part, down that normal, from above and along the span past the arm.
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    for (const auto& o : overlays) {
+      for (const auto& n : o.normals) normal += n;
+    }
+    if (normal.norm() > 1e-9 && std::abs(normal.normalized().z()) < 0.7) {  // a standing skin
+      const Eigen::Vector3d forward = -normal.normalized() + Eigen::Vector3d(1.0, 0.0, -0.9);
+      const render::CameraView along = render::LookAlong(view.lookat_m, forward, view.distance_m);
+      view.azimuth_deg = along.azimuth_deg;
+      view.elevation_deg = along.elevation_deg;
+    }
   }
   if (close_up) {
     // Look along the tool y axis (the stitch direction), low, so both needles and the
@@ -211,6 +226,7 @@ Status RenderScene(const LoadedScene& ls, const RenderRequest& req, DiagnosticSi
   // Paths and stitches are drawn thick enough to see at the chosen distance.
   const double min_radius = view.distance_m * (close_up ? 0.0006 : (part_view ? 0.003 : 0.0012));
   for (std::size_t i = 0; i < overlays.size(); ++i) {
+    if (radius_scale[i] < 0) continue;  // a width of its own (RequestOverlays)
     overlays[i].radius_m = std::max(overlays[i].radius_m, min_radius) * radius_scale[i];
   }
   render::Image img = renderer->Render(data.get(), view, overlays);

@@ -8,6 +8,7 @@
 #include "stitchsim/render/scene_model.h"
 #include "stitchsim/render/text.h"
 #include "stitchsim/run/close_up.h"
+#include "stitchsim/run/laid_ribbons.h"
 #include "stitchsim/run/scene_render.h"
 #include "stitchsim/run/snapshots.h"
 #include "stitchsim/run/start_pose.h"
@@ -21,6 +22,8 @@ constexpr int kCloseUpWidth = 1024;
 constexpr int kCloseUpHeight = 768;
 constexpr int kOverviewWidth = 1280;
 constexpr int kOverviewHeight = 960;
+// The overview's ribbon boxes at most (MuJoCo's scene holds 20000 geoms with the model's).
+constexpr std::size_t kMaxRibbonSegments = 12000;
 
 // Colours by verdict (overview).
 constexpr std::array<float, 4> kCleanRgba = {0.1f, 0.85f, 0.2f, 1.0f};
@@ -45,9 +48,11 @@ std::string CountedNoun(long n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
-// The stitches coloured by verdict and what the rules draw, over the cell (robot shown clear
-// above the start of the first path).
-RenderRequest OverviewRequest(const SnapshotInputs& in) {
+// The stitches coloured by verdict and what the rules draw, the laid tows as ribbons coloured
+// by ply (their legend entries into `ply_legend`), over the cell (robot shown clear above the
+// start of the first path).
+RenderRequest OverviewRequest(const SnapshotInputs& in,
+                              std::vector<render::LegendEntry>& ply_legend) {
   const verify::Verifier& v = *in.verifier;
   RenderRequest req;
   req.view = "part";
@@ -93,9 +98,22 @@ RenderRequest OverviewRequest(const SnapshotInputs& in) {
   for (auto& s : sets) {
     if (!s.points_part_mm.empty()) req.point_sets.push_back(std::move(s));
   }
+  // AFP: the laid material as ribbons coloured by ply, in place of the course edges' dots.
+  LaidRibbons ribbons =
+      MakeLaidRibbons(v.Laid(), kMaxRibbonSegments, in.scene->scene->preform_thickness_mm);
+  const bool have_ribbons = !ribbons.sets.empty();
+  for (auto& set : ribbons.sets) req.point_sets.push_back(std::move(set));
+  ply_legend = std::move(ribbons.legend);
+  if (have_ribbons && (ribbons.tows_per_ribbon > 1 || ribbons.station_step > 1)) {
+    ply_legend.push_back(
+        {{0, 0, 0},
+         "thinned: " + std::to_string(ribbons.tows_per_ribbon) + " tows per ribbon, every " +
+             (ribbons.station_step > 1 ? std::to_string(ribbons.station_step) + "th " : "") +
+             "station"});
+  }
   for (const auto& rule : v.Rules()) {
     for (auto& drawn : rule->Drawings()) {
-      if (drawn.points_mm.empty()) continue;
+      if (drawn.points_mm.empty() || (have_ribbons && drawn.label == "afp_laid")) continue;
       RenderRequest::PointSet set;
       set.rgba = DrawnColour(drawn.label);
       set.radius_scale = drawn.label == "afp_laid" ? 0.5 : 1.0;
@@ -110,7 +128,8 @@ RenderRequest OverviewRequest(const SnapshotInputs& in) {
 Status WriteOverview(const SnapshotInputs& in, const render::SnapshotFonts& fonts,
                      const fs::path& dir, DiagnosticSink& sink) {
   const verify::Report& report = *in.report;
-  RenderRequest req = OverviewRequest(in);
+  std::vector<render::LegendEntry> ply_legend;
+  RenderRequest req = OverviewRequest(in, ply_legend);
   req.output = (dir / "overview.png").string();
   render::TitleBar title;
   title.line1 = "overview · " + std::string(report.errors == 0 ? "PASS" : "FAIL") + ": " +
@@ -123,8 +142,10 @@ Status WriteOverview(const SnapshotInputs& in, const render::SnapshotFonts& font
   title.accent = report.errors == 0 ? kPassAccent : kErrorAccent;
   std::vector<render::LegendEntry> legend;
   for (const auto& set : req.point_sets) {
+    if (set.label.rfind("afp_ply_", 0) == 0) continue;  // one entry per ply, below
     legend.push_back({render::ToRgb(set.rgba), OverviewLegendText(set.label)});
   }
+  legend.insert(legend.end(), ply_legend.begin(), ply_legend.end());
   if (legend.empty()) legend.push_back({render::ToRgb({0.1f, 0.9f, 0.2f, 1.0f}), "scene paths"});
   req.decorate = [&](render::Image& img) {
     render::DrawTitleBar(img, fonts, title);
@@ -141,7 +162,8 @@ render::TitleBar CloseUpTitle(const verify::Rule& rule, const verify::Report& re
   const verify::Finding* f = FocusFinding(rule);
   std::string l2;
   if (f != nullptr) {
-    l2 = "line " + std::to_string(f->line) + " · stitch " + std::to_string(f->stitch) + " · ";
+    l2 = "line " + std::to_string(f->line) + " · ";
+    if (f->stitch > 0) l2 += "stitch " + std::to_string(f->stitch) + " · ";
     if (!f->subject.empty()) l2 += f->subject + " ";
     const std::string unit = f->unit.empty() ? "" : " " + f->unit;
     l2 += close_up::Fmt("%.4g", f->value) + unit + " (limit " + close_up::Fmt("%.4g", f->limit) +
@@ -202,8 +224,8 @@ Status WriteCloseUps(const SnapshotInputs& in, const render::SnapshotFonts& font
   // Close-ups come as near as a few centimetres (the needles): a near clipping plane of 1 cm.
   model->vis.map.znear = std::min<float>(model->vis.map.znear, 0.01 / model->stat.extent);
   render::MjDataPtr data(mj_makeData(model.get()));
-  const CloseUpContext ctx{in.scene,    in.process, in.cell,
-                           model.get(), data.get(), &v.StitchMarks()};
+  const CloseUpContext ctx{in.scene,   in.process,       in.cell, model.get(),
+                           data.get(), &v.StitchMarks(), &v};
   for (const auto& rule : v.Rules()) {
     if (rule->Summary().errors == 0) continue;
     std::optional<CloseUpPlan> plan;

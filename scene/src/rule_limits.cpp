@@ -100,6 +100,12 @@ constexpr LimitSpec kTable[] = {
      "roller axis (tool x) out of the tangent plane while laying"},
     {K::kAfpCompactionMaxLeanDeg, "afp.compaction", "max_lean_deg", U::kDeg, 15.0, false,
      "head axis leaning along the travel (tool y out of the tangent plane) while laying"},
+    {K::kAfpCompactionMaxStandoffFraction, "afp.compaction", "max_standoff_fraction", U::kFraction, 0.5,
+     false,
+     "programmed tool point off the laid surface (outside the stack thickness within a tow width "
+     "of its "
+     "foot), as a fraction of the laying ply's thickness: the path does not follow the plies "
+     "below (planned on the bare tool, or on a ply that is missing)"},
     {K::kAfpCoverageMaxBarePct, "afp.coverage", "max_bare_pct", U::kPct, 2.0, false,
      "area of a ply left bare, beyond the band of one tow width along its boundary, percent"},
     {K::kAfpCoverageMaxDoubledPct, "afp.coverage", "max_doubled_pct", U::kPct, 5.0, false,

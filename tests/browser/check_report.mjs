@@ -2,7 +2,7 @@
 // Checks a stitchsim HTML report in Debian's headless Chromium (docs/report-format.md,
 // "HTML report"):
 //   node tests/browser/check_report.mjs FILE.html [--out DIR] [--expect-finding] [--timeout S]
-//                                       [--expect-shown-error]
+//                                       [--expect-shown-error] [--afp-csv TOWS.csv --afp-program P.nc]
 // Fails (exit 1, a message on stderr) on a console error or page error, a request that is not
 // file:/data:/blob:, an error shown on the page, the page not ready within the timeout (60 s),
 // a blank 3D canvas, a finding click that does not move the slider to the finding's line and
@@ -10,11 +10,14 @@
 // (default: no files); stdout gets one JSON line {"load_s", "size_mb", "changed_fraction", ...}.
 // --expect-shown-error (malformed data): passes only if the page shows its error message
 // (and still logs no console error).
+// --afp-csv / --afp-program (a fibre-placement ply planned with --tows-csv): also the laid-tow
+// checks of check_afp.mjs (a picked tow's course, tow and line; hide, peel, colour switch).
 import { chromium } from 'playwright-core';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
+import { checkAfp } from './check_afp.mjs';
 
 const BLANK_MIN_STDDEV = 6;       // luminance spread (0..255) a drawn scene exceeds
 const BLANK_MIN_FRACTION = 0.02;  // share of pixels that must differ from the background
@@ -23,16 +26,19 @@ const CHANGE_MIN_FRACTION = 0.03; // share of changed pixels required after "go 
 
 function parseArgs(argv) {
   const args = { file: null, out: null, expectFinding: false, expectShownError: false,
-                 timeoutS: 60 };
+                 timeoutS: 60, afpCsv: null, afpProgram: null };
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i];
     if (a === '--out') args.out = argv[++i];
     else if (a === '--expect-finding') args.expectFinding = true;
     else if (a === '--expect-shown-error') args.expectShownError = true;
     else if (a === '--timeout') args.timeoutS = Number(argv[++i]);
+    else if (a === '--afp-csv') args.afpCsv = argv[++i];
+    else if (a === '--afp-program') args.afpProgram = argv[++i];
     else if (!args.file && !a.startsWith('--')) args.file = a;
     else throw new Error(`unknown argument ${a}`);
   }
+  if (!args.afpCsv !== !args.afpProgram) throw new Error('--afp-csv and --afp-program go together');
   if (!args.file) {
     throw new Error('usage: check_report.mjs FILE.html [--out DIR] [--expect-finding] ' +
                     '[--timeout S]');
@@ -190,6 +196,10 @@ async function run(args, page, failures, summary) {
   const q = await page.evaluate(() => window.stitchsim.jointsAt(window.stitchsim.line));
   if (!Array.isArray(q) || !q.length || !q.every(Number.isFinite)) {
     failures.push(`stitchsim.jointsAt gave ${JSON.stringify(q)}`);
+  }
+  if (args.afpCsv) {
+    await checkAfp(args, page, failures, summary, { canvasPixels, settle, changedFraction,
+                                                    minChange: CHANGE_MIN_FRACTION });
   }
 }
 

@@ -30,6 +30,7 @@ MARKERS = {
     "THREE": os.path.join(THREE_DIR, "three.min.js"),
     "ORBIT": os.path.join(THREE_DIR, "examples/js/controls/OrbitControls.js"),
     "APP": os.path.join(ROOT, "run/html/report.js"),
+    "AFP": os.path.join(ROOT, "run/html/afp_view.js"),
 }
 JOINTS = ["rail_x", "a1", "a2", "a3", "a4", "a5", "a6", "rotator"]
 HOME = [2.8, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]

@@ -74,6 +74,40 @@ bool Inside(const Eigen::Vector2d& p, double u0, double v0, double u1, double v1
   return p.x() > u0 && p.x() < u1 && p.y() > v0 && p.y() < v1;
 }
 
+// A one-tow course between points at u 0 and 100, its tow's edges at v = lo and hi, laid from
+// s0 to s1.
+planner::PlyCourse OneTowCourse(double lo, double hi, double s0, double s1) {
+  planner::PlyCourse course;
+  for (const double u : {0.0, 100.0}) {
+    planner::PlyPoint p;
+    p.s_mm = u;
+    p.boundary_uv = {Eigen::Vector2d(u, lo), Eigen::Vector2d(u, hi)};
+    course.points.push_back(p);
+  }
+  planner::PlyTow tow;
+  tow.tow = 1;
+  tow.laid = {planner::TowSegment{s0, s1}};
+  course.tows.push_back(tow);
+  return course;
+}
+
+// A tow piece that starts and ends between two course points (its add and cut) lays only that
+// part of the step: a tow over v 0..9 laid from s 30 to 70 raises the cells u 30..70 by t and
+// none beyond (cells of 2 mm centred on odd mm, centre lookup). A second course abutting it
+// with a seam of 1e-4 mm through the cell centres at v = 9 (the walk's rounding) leaves no
+// trench there.
+TEST(LaminatePlanner, AThicknessFieldPaintsPiecesEndingBetweenPointsAndClosesRoundingSeams) {
+  planner::PlyPlan plan;
+  plan.band = process::TowBand{1, 1};
+  plan.courses = {OneTowCourse(0.0, 8.99995, 30.0, 70.0), OneTowCourse(9.00005, 18.0, 0.0, 100.0)};
+  planner::ThicknessField field(geom::Domain2{Eigen::Vector2d(-50, -50), Eigen::Vector2d(150, 60)},
+                                2.0);
+  field.AddPly(plan, 0.18);
+  for (const double u : {31.0, 50.0, 69.0}) EXPECT_NEAR(field.At({u, 5.0}), 0.18, 1e-12) << u;
+  for (const double u : {10.0, 27.0, 73.0, 90.0}) EXPECT_NEAR(field.At({u, 5.0}), 0.0, 1e-12) << u;
+  for (const double u : {31.0, 51.0, 69.0}) EXPECT_NEAR(field.At({u, 9.0}), 0.18, 1e-12) << u;
+}
+
 TEST(LaminatePlanner, FlatPlateStackLiftsPlyKByKMinusOneThicknesses) {
   // Angles 0, 90, 45, -45: no stagger shift, every ply on the same boundary.
   const auto s = Plate(Entry(0, kBig) + Entry(90, kBig) + Entry(45, kBig) + Entry(-45, kBig),

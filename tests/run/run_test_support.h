@@ -14,8 +14,19 @@
 #include "stitchsim/planner/stitch_planner.h"
 #include "stitchsim/program/dialect.h"
 #include "stitchsim/run/loaded_scene.h"
+#include "stitchsim/verify/afp_laid_material.h"
 
 namespace stitchsim::run::testing {
+
+/// An empty laid-material record of a head of `tows` tows `width_mm` wide, stations at most
+/// `spacing_mm` apart (the laid-material tests build their strips into it).
+inline verify::LaidMaterial EmptyLaid(int tows, double width_mm, double spacing_mm) {
+  verify::LaidMaterial m;
+  m.tows = tows;
+  m.tow_width_mm = width_mm;
+  m.spacing_mm = spacing_mm;
+  return m;
+}
 
 inline std::filesystem::path SourceDir() { return std::filesystem::path(STITCHSIM_SOURCE_DIR); }
 

@@ -76,15 +76,17 @@ inline trace::LineRecord LayLine(int line, const Eigen::Isometry3d& from,
 }
 
 /// Runs the verifier over `lines` (no samples: the afp.* rules read lines); `then`, when
-/// given, reads the finished verifier.
+/// given, reads the finished verifier. `keep_stitch_marks`: as verify --snapshots / --html
+/// (the verifier keeps what was laid, Verifier::Laid()).
 inline Report RunLines(const scene::Scene& scene, const std::vector<trace::LineRecord>& lines,
-                       const std::function<void(const Verifier&)>& then = {}) {
+                       const std::function<void(const Verifier&)>& then = {},
+                       bool keep_stitch_marks = false) {
   const process::ProcessModel model = process::MakeProcessModel(scene, 5.0);
   trace::CellDescription cell;
   cell.lower_limits.setConstant(-10.0);
   cell.upper_limits.setConstant(10.0);
   cell.max_velocities.setConstant(10.0);
-  Verifier v(RuleContext{&scene, &cell, &model}, false);
+  Verifier v(RuleContext{&scene, &cell, &model}, keep_stitch_marks);
   for (const auto& l : lines) v.OnLine(l);
   Report r;
   v.Finish(r);

@@ -131,6 +131,15 @@ TEST(AfpThickness, ATowOverlappingAnotherOfItsPlyCountsOnce) {
   EXPECT_EQ(rule->errors, 0);
 }
 
+// The findings of `rule` about `subject`.
+std::vector<Finding> SubjectFindings(const RuleSummary& rule, const std::string& subject) {
+  std::vector<Finding> out;
+  for (const Finding& f : rule.findings) {
+    if (f.subject == subject) out.push_back(f);
+  }
+  return out;
+}
+
 TEST(AfpThickness, APlyPlannedOnTheBareToolUnderAnEarlierPlyPressesByItsThickness) {
   auto scene = Plate(2);
   scene->limits.Set(scene::LimitKey::kAfpCompactionMaxPressMm, 0.1);
@@ -139,6 +148,8 @@ TEST(AfpThickness, APlyPlannedOnTheBareToolUnderAnEarlierPlyPressesByItsThicknes
       Verify(*scene, {Course(s, 10, 1, 0, 300, 0.0), Course(s, 20, 2, 0, 300, 0.0)});
   const RuleSummary* rule = RuleOf(run.report, "afp.compaction");
   ASSERT_NE(rule, nullptr);
+  // One line from u 0 to 300: its programmed points lie at the ends of the ply below, where
+  // standoff reads both sides; the chord between them presses by t.
   ASSERT_EQ(rule->findings.size(), 1U);
   const Finding& f = rule->findings[0];
   EXPECT_EQ(f.line, 20);
@@ -148,27 +159,73 @@ TEST(AfpThickness, APlyPlannedOnTheBareToolUnderAnEarlierPlyPressesByItsThicknes
   EXPECT_NE(f.message.find("0.18 mm"), std::string::npos) << f.message;
 }
 
-// At the default limits (press 1 mm, lift 0.25 mm; plies of 0.18 mm) a ply planned on the bare
-// tool fires once more than 5 plies lie below it (6 x 0.18 = 1.08 mm), not under 5 (0.9 mm).
-TEST(AfpThickness, AtTheDefaultLimitsTheBareToolFiresUnderSixPlies) {
-  for (const int below : {5, 6}) {
+// At the default limits (press 1 mm, lift 0.25 mm, standoff half a ply; plies of 0.18 mm) a
+// ply planned on the bare tool is off the laid surface under one ply already: standoff by
+// below x 0.18 mm against 0.09 mm (200 % a ply below); press fires once more than 5 plies lie
+// below it (6 x 0.18 = 1.08 mm > 1 mm), not under 5 (0.9 mm).
+TEST(AfpThickness, AtTheDefaultLimitsTheBareToolFiresUnderOnePly) {
+  for (const int below : {1, 5, 6}) {
     auto scene = Plate(below + 1);
     const geom::Surface& s = *scene->surface;
     std::vector<trace::LineRecord> lines;
     for (int k = 1; k <= below; ++k) lines.push_back(Course(s, 10 * k, k, 0, 300, (k - 1) * kT));
-    lines.push_back(Course(s, 100, below + 1, 0, 300, 0.0));  // on the bare tool
+    // On the bare tool, in 30 mm lines (standoff is judged at the programmed points; the
+    // course's two ends, within a tow width of the plies' ends, read both sides).
+    for (int i = 0; i < 10; ++i)
+      lines.push_back(Course(s, 100 + i, below + 1, 30 * i, 30 * i + 30, 0.0));
     const Verified run = Verify(*scene, lines);
     const RuleSummary* rule = RuleOf(run.report, "afp.compaction");
     ASSERT_NE(rule, nullptr);
-    EXPECT_NEAR(*testing::SubjectOf(*rule, "press").worst_value, below * kT / 1.0 * 100.0, 1e-6);
-    if (below == 5) {
-      EXPECT_EQ(rule->errors, 0);
+    const SubjectFigure& press = testing::SubjectOf(*rule, "press");
+    const SubjectFigure& standoff = testing::SubjectOf(*rule, "standoff");
+    EXPECT_NEAR(*press.worst_value, below * kT / 1.0 * 100.0, 1e-6);
+    EXPECT_NEAR(*standoff.worst_value, below * 200.0, 1e-6);
+    EXPECT_EQ(standoff.worst_line, 100);
+    // Every line has a programmed point inside (u 30 .. 270): 10 findings, standoff (the
+    // worst subject of each line), 200 % per ply below.
+    ASSERT_EQ(rule->findings.size(), 10U) << below;
+    for (const Finding& f : rule->findings) {
+      EXPECT_EQ(f.subject, "standoff");
+      EXPECT_NEAR(f.value, below * 200.0, 1e-6);
+      EXPECT_NE(f.message.find("limit 0.09 mm: 0.5 of the ply's 0.18 mm"), std::string::npos)
+          << f.message;
+    }
+    // Press is within the roller's compliance under 5 plies (0.9 mm), past it under 6.
+    EXPECT_EQ(*press.worst_value > 100.0, below == 6) << below;
+  }
+}
+
+// Standoff against its limit by hand: ply 2 planned 0.08 mm above ply 1's top passes (0.08 /
+// 0.09 = 88.9 %), 0.10 mm fires (111.1 %) on its line; lift (0.25 mm) fires on neither. A ply
+// the scene gives no thickness is not judged for standoff.
+TEST(AfpThickness, StandoffIsAFractionOfTheLayingPlysThickness) {
+  for (const double off : {0.08, 0.10}) {
+    auto scene = Plate(2);
+    const geom::Surface& s = *scene->surface;
+    const Verified run =
+        Verify(*scene, {Course(s, 10, 1, 0, 300, 0.0), Course(s, 20, 2, 0, 150, kT + off),
+                        Course(s, 21, 2, 150, 300, kT + off)});
+    const RuleSummary* rule = RuleOf(run.report, "afp.compaction");
+    ASSERT_NE(rule, nullptr);
+    EXPECT_NEAR(*testing::SubjectOf(*rule, "standoff").worst_value, off / 0.09 * 100.0, 1e-6);
+    EXPECT_EQ(*testing::SubjectOf(*rule, "lift").worst_value > 100.0, false);
+    if (off > 0.09) {
+      ASSERT_EQ(rule->findings.size(), 2U);  // u = 150 ends line 20 and starts line 21
+      EXPECT_EQ(rule->findings[0].line, 20);
+      EXPECT_EQ(rule->findings[0].subject, "standoff");
     } else {
-      ASSERT_EQ(rule->findings.size(), 1U);
-      EXPECT_EQ(rule->findings[0].line, 100);
-      EXPECT_NEAR(rule->findings[0].value, 108.0, 1e-6);
+      EXPECT_TRUE(rule->findings.empty());
     }
   }
+  auto weightless = Plate(2);
+  weightless->plies[1].thickness_mm = 0.0;
+  const geom::Surface& s = *weightless->surface;
+  const Verified run =
+      Verify(*weightless, {Course(s, 10, 1, 0, 300, 0.0), Course(s, 20, 2, 0, 150, 0.0),
+                           Course(s, 21, 2, 150, 300, 0.0)});
+  const RuleSummary* rule = RuleOf(run.report, "afp.compaction");
+  ASSERT_NE(rule, nullptr);
+  EXPECT_TRUE(SubjectFindings(*rule, "standoff").empty());
 }
 
 TEST(AfpThickness, ARollerLiftedByAMissingPlyFiresAndTheRaisedPlyPasses) {
@@ -179,10 +236,14 @@ TEST(AfpThickness, ARollerLiftedByAMissingPlyFiresAndTheRaisedPlyPasses) {
   const Verified missing = Verify(*scene, {Course(s, 20, 2, 0, 300, kT)});
   const RuleSummary* rule = RuleOf(missing.report, "afp.compaction");
   ASSERT_NE(rule, nullptr);
+  // Lifted by t: 180 % of 0.1 mm; the line's finding is its worst subject, standoff (off by t,
+  // twice half a ply: 200 %).
   ASSERT_EQ(rule->findings.size(), 1U);
   EXPECT_EQ(rule->findings[0].line, 20);
-  EXPECT_EQ(rule->findings[0].subject, "lift");
-  EXPECT_NEAR(rule->findings[0].value, kT / 0.1 * 100.0, 1e-6);
+  EXPECT_EQ(rule->findings[0].subject, "standoff");
+  EXPECT_NEAR(rule->findings[0].value, 200.0, 1e-6);
+  EXPECT_NEAR(*testing::SubjectOf(*rule, "lift").worst_value, kT / 0.1 * 100.0, 1e-6);
+  EXPECT_EQ(testing::SubjectOf(*rule, "lift").worst_line, 20);
   // Ply 1 laid first: ply 2 at +t sits on it.
   const Verified raised =
       Verify(*scene, {Course(s, 10, 1, 0, 300, 0.0), Course(s, 20, 2, 0, 300, kT)});
@@ -190,15 +251,21 @@ TEST(AfpThickness, ARollerLiftedByAMissingPlyFiresAndTheRaisedPlyPasses) {
   ASSERT_NE(clean, nullptr);
   EXPECT_EQ(clean->errors, 0);
   EXPECT_NEAR(*testing::SubjectOf(*clean, "lift").worst_value, 0.0, 1e-6);
-  // Ply 1 over u 0..150; ply 2 on it to its end (the edge within a cell reads both sides),
-  // then beyond it from u 160: only that line lifts, by t.
+  // A roller bridges a step narrower than a tow: ply 2 at +t runs 5 mm past the end of ply 1
+  // (u 0..150) without a finding: the stack within a tow width of its foot holds t and 0.
+  const Verified step =
+      Verify(*scene, {Course(s, 10, 1, 0, 150, 0.0), Course(s, 20, 2, 0, 155, kT)});
+  EXPECT_EQ(RuleOf(step.report, "afp.compaction")->errors, 0);
+  // Ply 1 over u 0..150; ply 2 on it to its end (the edge within a tow width reads both
+  // sides), then beyond it from u 160: only that line lifts, by t (and is off by it).
   const Verified half = Verify(*scene, {Course(s, 10, 1, 0, 150, 0.0), Course(s, 20, 2, 0, 150, kT),
                                         Course(s, 21, 2, 160, 300, kT)});
   const RuleSummary* part = RuleOf(half.report, "afp.compaction");
   ASSERT_NE(part, nullptr);
   ASSERT_EQ(part->findings.size(), 1U);
   EXPECT_EQ(part->findings[0].line, 21);
-  EXPECT_NEAR(part->findings[0].value, kT / 0.1 * 100.0, 1e-6);
+  EXPECT_EQ(testing::SubjectOf(*part, "lift").worst_line, 21);
+  EXPECT_NEAR(*testing::SubjectOf(*part, "lift").worst_value, kT / 0.1 * 100.0, 1e-6);
 }
 
 TEST(AfpThickness, ACourseTurnedFourDegreesIsItsPlysWorstFibreAngleAndOnTheMap) {

@@ -32,8 +32,10 @@ std::string DocumentedFamily(const std::string& id) {
   if (StartsWith(id, "stitch.")) return "stitch";
   if (StartsWith(id, "kin.") || StartsWith(id, "dyn.")) return "kinematics";
   if (StartsWith(id, "constraint.")) return "constraint";
-  if (id == "afp.compaction" || id == "afp.steering_radius") return "afp";
-  return "";  // program.*, afp.coverage, afp.gap, afp.overlap: no close-up
+  if (id == "afp.compaction" || id == "afp.steering_radius" || id == "afp.gap" ||
+      id == "afp.overlap")
+    return "afp";
+  return "";  // program.*, afp.coverage and S17's afp rules: no close-up
 }
 
 TEST(RuleRegistry, EveryRuleHasAnIdAFactoryAndTheDocumentedFamily) {

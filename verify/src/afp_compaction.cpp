@@ -1,10 +1,14 @@
 // afp.compaction: how the compaction roller stands on the surface at every laying pose: the
 // tool point on the laid surface (its distance along the normal from its foot, less the
-// thickness the programme's earlier plies laid there (afp_thickness.h): above = lift, below
-// = press), the roller axis (tool x) in the tangent plane (roll) and the head axis leaning
+// thickness the programme's earlier plies laid within a tow width of the foot
+// (afp_thickness.h): above the thickest = lift, below the thinnest = press, either =
+// standoff), the roller axis (tool x) in the tangent plane (roll) and the head axis leaning
 // along the travel (tool y out of the tangent plane: seed 003's inclined pressure). Each of
-// the four is a subject with its own limit; the rule's figures are percent of the limit, the
-// findings give the value itself. A pose whose tows leave the surface is an error.
+// the five is a subject with its own limit (standoff's a fraction of the laying ply's
+// thickness, at the programmed points: lift and press are the roller's compliance along the
+// whole path, standoff says whether the path follows the plies below at all); the rule's figures
+// are percent of the limit, the findings give the value itself. A pose whose tows leave the surface
+// is an error.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -30,12 +34,16 @@ struct Measure {
   LimitKey key;
 };
 
-constexpr std::array<Measure, 4> kMeasures = {{
+constexpr std::array<Measure, 5> kMeasures = {{
     {"lift", "mm", "tool point above the laid surface by", LimitKey::kAfpCompactionMaxLiftMm},
     {"press", "mm", "tool point below the laid surface by", LimitKey::kAfpCompactionMaxPressMm},
     {"roll", "deg", "roller axis out of the tangent plane by", LimitKey::kAfpCompactionMaxRollDeg},
     {"lean", "deg", "head axis leaning along the travel by", LimitKey::kAfpCompactionMaxLeanDeg},
+    // Its limit is a fraction of the laying ply's thickness (applied as mm per line).
+    {"standoff", "mm", "tool point off the laid surface by",
+     LimitKey::kAfpCompactionMaxStandoffFraction},
 }};
+constexpr std::size_t kStandoff = 4;
 
 // "1-16", "3", "1-4, 6-16": the set bits of `mask` as runs of 1-based tow numbers.
 std::string TowSpan(std::uint64_t mask) {
@@ -57,7 +65,8 @@ class CompactionRule final : public Rule {
   CompactionRule(const RuleContext& ctx, std::shared_ptr<detail::LaidTows> laid)
       : Rule("afp.compaction",
              "compaction roller on the surface while laying: tool point lift and press along "
-             "the normal, roller axis roll, head lean along the travel (percent of each limit)",
+             "the normal, roller axis roll, head lean along the travel, tool point standoff from "
+             "the laid surface (percent of each limit)",
              "%"),
         laid_(std::move(laid)),
         below_(laid_->Surface(), ctx.scene->plies, laid_->Layout()) {
@@ -87,30 +96,45 @@ class CompactionRule final : public Rule {
       laid_points_.Add(pose.cross.boundary.front());
       laid_points_.Add(pose.cross.boundary.back());
       const Eigen::Vector3d n = laid_->Surface().Normal(pose.cross.centre_uv);
-      // The laid surface: the tool surface raised along the normal by the thickness below
-      // (within a cell of the foot: lift over the thickest, press under the thinnest).
+      // The laid surface: the tool surface raised along the normal by the thickness below,
+      // read within one tow width of the foot (a roller bridges a step narrower than a tow:
+      // lift over the thickest, press under the thinnest, standoff outside both).
       const double d = (pose.tool.translation() - pose.cross.centre).dot(n);
-      const detail::StackRange h = below_.Around(pose.cross.centre_uv);
-      const std::array<double, 4> values = {
+      const detail::StackRange h = below_.Around(pose.cross.centre_uv, laid_->Layout().width_mm);
+      const std::array<double, kMeasures.size()> values = {
           std::max(0.0, d - h.max_mm), std::max(0.0, h.min_mm - d),
           std::asin(std::min(1.0, std::abs(pose.tool.linear().col(0).dot(n)))) * kRadToDeg,
-          std::asin(std::min(1.0, std::abs(pose.tool.linear().col(1).dot(n)))) * kRadToDeg};
+          std::asin(std::min(1.0, std::abs(pose.tool.linear().col(1).dot(n)))) * kRadToDeg,
+          std::max({0.0, d - h.max_mm, h.min_mm - d})};
+      const double ply_mm = below_.PlyThickness(line->ply);
+      const bool programmed = pose.fraction <= 0.0 || pose.fraction >= 1.0;
       for (std::size_t i = 0; i < kMeasures.size(); ++i) {
-        const double pct = limits_[i] > 0 ? values[i] / limits_[i] * 100.0 : (values[i] > 0) * 1e9;
+        const double limit = i == kStandoff ? limits_[i] * ply_mm : limits_[i];
+        // Standoff at the programmed points only (the line's ends): between them the chord's
+        // dip on a curved surface is the roller's compliance (press), not the path's standoff.
+        // A ply of no thickness has none.
+        if (i == kStandoff && (ply_mm <= 0.0 || !programmed)) continue;
+        const double pct = limit > 0 ? values[i] / limit * 100.0 : (values[i] > 0) * 1e9;
         ObserveSubject(i, pct, line->source_line, 0);
         CheckUpper(
             pct, line->source_line, 0, kMeasures[i].subject,
             [&] {
-              char buf[200];
+              char limit_text[96];
+              if (i == kStandoff) {
+                std::snprintf(limit_text, sizeof(limit_text), "%.4g mm: %.3g of the ply's %.4g mm",
+                              limit, limits_[i], ply_mm);
+              } else {
+                std::snprintf(limit_text, sizeof(limit_text), "%.4g %s", limit, kMeasures[i].unit);
+              }
+              char buf[320];
               std::snprintf(buf, sizeof(buf),
-                            "ply %d course %d (tows %s) %s %.4g %s (limit %.4g %s; %.4g mm laid "
-                            "below):",
+                            "ply %d course %d (tows %s) %s %.4g %s (limit %s; %.4g to %.4g mm laid "
+                            "below within a tow width):",
                             line->ply, line->course, TowSpan(line->tows).c_str(), kMeasures[i].what,
-                            values[i], kMeasures[i].unit, limits_[i], kMeasures[i].unit,
-                            i == 1 ? h.min_mm : h.max_mm);
+                            values[i], kMeasures[i].unit, limit_text, h.min_mm, h.max_mm);
               return std::string(buf);
             },
-            nullptr);
+            nullptr, &pose.cross.centre);
       }
     }
   }
@@ -139,7 +163,7 @@ class CompactionRule final : public Rule {
  private:
   std::shared_ptr<detail::LaidTows> laid_;
   detail::ThinnedPoints laid_points_;
-  std::array<double, 4> limits_{};
+  std::array<double, kMeasures.size()> limits_{};
   detail::ThicknessBelow below_;
 };
 

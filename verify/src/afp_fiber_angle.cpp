@@ -104,6 +104,7 @@ class FiberAngleRule final : public Rule {
       }
       if (tow_worst < 0.0) continue;
       ObserveSubject(static_cast<std::size_t>(t) - 1, tow_worst, line->source_line, 0);
+      if (detail::LaidFigures* f = laid_->Figures()) f->FiberAngle(line->source_line, t, tow_worst);
       if (tow_worst > worst) {
         worst = tow_worst;
         worst_tow = t;

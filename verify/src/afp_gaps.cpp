@@ -195,7 +195,7 @@ class CourseEdgeRule final : public Rule {
                         gap_ ? "gap" : "overlap", tow, line.course, side == 0 ? "left" : "right");
           return std::string(buf);
         },
-        nullptr);
+        nullptr, &p);
   }
 
   // True when the edge point `e` is left to the coverage policy: within one tow width of the
@@ -281,15 +281,15 @@ class CourseEdgeRule final : public Rule {
 
 }  // namespace
 
-// Gaps and overlaps show on the overview and the coverage map, not in a close-up.
+// Gaps and overlaps show on the overview, the coverage map and a close-up of the worst one.
 RuleEntry AfpGapRuleEntry() {
-  return {"afp.gap", CloseUpFamily::kNone, detail::RunsWhenLaying,
+  return {"afp.gap", CloseUpFamily::kAfp, detail::RunsWhenLaying,
           [](const RuleContext& ctx, detail::RuleMaking& making) -> std::unique_ptr<Rule> {
             return std::make_unique<CourseEdgeRule>(ctx, making.Laid(ctx), true);
           }};
 }
 RuleEntry AfpOverlapRuleEntry() {
-  return {"afp.overlap", CloseUpFamily::kNone, detail::RunsWhenLaying,
+  return {"afp.overlap", CloseUpFamily::kAfp, detail::RunsWhenLaying,
           [](const RuleContext& ctx, detail::RuleMaking& making) -> std::unique_ptr<Rule> {
             return std::make_unique<CourseEdgeRule>(ctx, making.Laid(ctx), false);
           }};

@@ -46,6 +46,17 @@ bool IsLayingLine(const trace::LineRecord& line);
 /// True when tow `tow` (1-based) is set in `mask`.
 inline bool TowLaid(std::uint64_t mask, int tow) { return ((mask >> (tow - 1)) & 1U) != 0; }
 
+/// Receives the figures the afp.* rules measure per line and tow, as they measure them (the
+/// verifier's laid material, Verifier::Laid()); set on the shared sampler, read by the rules.
+class LaidFigures {
+ public:
+  virtual ~LaidFigures() = default;
+  /// afp.steering_radius measured `radius_mm` at a vertex it reports on `line` for `tow`.
+  virtual void SteeringRadius(int line, int tow, double radius_mm) = 0;
+  /// afp.fiber_angle measured `deg` as the worst deviation of `tow` along `line`.
+  virtual void FiberAngle(int line, int tow, double deg) = 0;
+};
+
 class LaidTows {
  public:
   LaidTows(const geom::Surface& surface, const process::TowLayout& layout);
@@ -58,6 +69,9 @@ class LaidTows {
   void SamplePath(const trace::LineRecord& line, LaidLine& out) const;
   const process::TowLayout& Layout() const { return layout_; }
   const geom::Surface& Surface() const { return *surface_; }
+  /// Where the rules hand their per-tow figures (nullptr: nowhere, the default).
+  void SetFigures(LaidFigures* figures) { figures_ = figures; }
+  LaidFigures* Figures() const { return figures_; }
 
  private:
   bool SameAsCached(const trace::LineRecord& line) const;
@@ -74,6 +88,7 @@ class LaidTows {
   LaidLine cached_;
   bool have_hint_ = false;
   Eigen::Vector2d hint_uv_ = Eigen::Vector2d::Zero();  ///< the previous pose's foot
+  LaidFigures* figures_ = nullptr;
 };
 
 /// At most kMaxDrawnPoints points spread evenly over all added: when full, every other one

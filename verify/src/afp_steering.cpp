@@ -108,6 +108,7 @@ class SteeringRadiusRule final : public Rule {
   // tow's: Rule::Observe keeps the largest); a radius under the limit waits for its line.
   void Consider(double radius, int line, int tow) {
     ObserveSmallest(radius, line, static_cast<std::size_t>(tow) - 1);
+    if (detail::LaidFigures* f = laid_->Figures()) f->SteeringRadius(line, tow, radius);
     if (radius < *summary_.error_limit) detail::KeepSmallest(below_, line, {radius, tow, 0});
   }
 

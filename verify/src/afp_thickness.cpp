@@ -85,13 +85,15 @@ void ThicknessBelow::Commit() {
 
 void ThicknessBelow::Finish() { Commit(); }
 
-StackRange ThicknessBelow::Around(const Eigen::Vector2d& uv) const {
+StackRange ThicknessBelow::Around(const Eigen::Vector2d& uv, double reach_mm) const {
   const Eigen::Vector2d c = (uv - grid_.origin_uv).cwiseQuotient(grid_.cell_uv);
   const auto cu = static_cast<int>(std::floor(c.x())), cv = static_cast<int>(std::floor(c.y()));
+  const int ru = std::max(1, static_cast<int>(std::ceil(reach_mm / grid_.cell_uv.x())));
+  const int rv = std::max(1, static_cast<int>(std::ceil(reach_mm / grid_.cell_uv.y())));
   std::optional<StackRange> range;
-  for (int iv = std::max(0, cv - 1); !stack_.empty() && iv <= std::min(grid_.nv - 1, cv + 1);
+  for (int iv = std::max(0, cv - rv); !stack_.empty() && iv <= std::min(grid_.nv - 1, cv + rv);
        ++iv) {
-    for (int iu = std::max(0, cu - 1); iu <= std::min(grid_.nu - 1, cu + 1); ++iu) {
+    for (int iu = std::max(0, cu - ru); iu <= std::min(grid_.nu - 1, cu + ru); ++iu) {
       const double s = stack_[static_cast<std::size_t>(iv) * static_cast<std::size_t>(grid_.nu) +
                               static_cast<std::size_t>(iu)];
       if (!range) range = StackRange{s, s};

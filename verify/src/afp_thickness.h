@@ -52,10 +52,11 @@ class ThicknessBelow {
   /// Commits the open ply (the programme's end).
   void Finish();
 
-  /// The committed thickness over the cell holding `uv` and its eight neighbours, smallest
-  /// and largest (mm; {0, 0} outside the domain): a foot on the edge of a ply below (a course
-  /// ending where the one below ends, a pad-up's step) reads both sides, within one cell.
-  StackRange Around(const Eigen::Vector2d& uv) const;
+  /// The committed thickness over the cells within `reach_mm` of the cell holding `uv` along
+  /// u and v (at least its eight neighbours), smallest and largest (mm; {0, 0} outside the
+  /// domain): a foot near the edge of a ply below (a course ending where the one below ends, a
+  /// tow's cut, a pad-up's step) reads both sides.
+  StackRange Around(const Eigen::Vector2d& uv, double reach_mm = 0.0) const;
   /// The thickness a ply lays (mm): its PlySpec's, 0 for a ply the scene does not define.
   double PlyThickness(int ply) const;
 

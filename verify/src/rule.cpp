@@ -156,7 +156,7 @@ std::optional<FindingSeverity> Rule::Classify(double value, int line, long stitc
 
 void Rule::RecordExceeded(FindingSeverity severity, double value, int line, long stitch,
                           const std::string& subject, const std::string& what,
-                          const trace::TraceSample* sample) {
+                          const trace::TraceSample* sample, const Eigen::Vector3d* position) {
   const double limit =
       severity == FindingSeverity::kError ? *summary_.error_limit : *summary_.warning_limit;
   char buf[256];
@@ -164,7 +164,7 @@ void Rule::RecordExceeded(FindingSeverity severity, double value, int line, long
                 summary_.unit.c_str(), severity == FindingSeverity::kError ? "error" : "warning",
                 limit, summary_.unit.c_str());
   // Classify already kept the snapshot sample at the worst value.
-  Record(severity, value, limit, line, stitch, subject, buf, sample);
+  Record(severity, value, limit, line, stitch, subject, buf, sample, position);
 }
 
 namespace {

@@ -99,8 +99,12 @@ RulePresence RunsWhenLayingWithLimit(const RuleContext& ctx, std::optional<doubl
 }  // namespace detail
 
 std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx) {
-  std::vector<std::unique_ptr<Rule>> rules;
   detail::RuleMaking making;
+  return MakeRules(ctx, making);
+}
+
+std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx, detail::RuleMaking& making) {
+  std::vector<std::unique_ptr<Rule>> rules;
   for (const RuleEntry& entry : RuleRegistry()) {
     if (entry.presence(ctx).kind != RulePresence::Kind::kRuns) continue;
     rules.push_back(entry.make(ctx, making));

@@ -3,17 +3,30 @@
 #include <algorithm>
 #include <atomic>
 
+#include "afp_laid_material_builder.h"
+#include "detail/rule_registry.h"
+
 namespace stitchsim::verify {
 
 Verifier::Verifier(const RuleContext& ctx, bool keep_stitch_marks)
-    : ctx_(ctx),
-      // From the verifier's copy: rules keep references to it (never to the caller's `ctx`).
-      rules_(MakeRules(ctx_)),
-      window_(*ctx_.process),
-      keep_marks_(keep_stitch_marks) {
+    : ctx_(ctx), window_(*ctx_.process), keep_marks_(keep_stitch_marks) {
   static std::atomic<std::uint64_t> instances{0};
   instance_ = ++instances;
-  if (!ctx_.scene->head.IsStitching()) laydown_ = std::make_unique<LaydownMeter>(LaydownFor(ctx_));
+  // From the verifier's copy: rules keep references to it (never to the caller's `ctx`).
+  detail::RuleMaking making;
+  rules_ = MakeRules(ctx_, making);
+  if (!ctx_.scene->head.IsStitching()) {
+    laydown_ = std::make_unique<LaydownMeter>(LaydownFor(ctx_));
+    // The rules' own sampler (made here when no rule made it): each line is sampled once.
+    if (keep_marks_) laid_ = std::make_unique<detail::LaidMaterialBuilder>(making.Laid(ctx_));
+  }
+}
+
+Verifier::~Verifier() = default;
+
+const LaidMaterial& Verifier::Laid() const {
+  static const LaidMaterial kEmpty;
+  return laid_ ? laid_->Material() : kEmpty;
 }
 
 namespace {
@@ -47,6 +60,8 @@ void Verifier::OnLine(const trace::LineRecord& line) {
   line_to_ = line.to;
   saw_input_ = true;
   if (laydown_) laydown_->OnLine(line);
+  // Before the rules: it samples the line, they reuse the sampling and hand it their figures.
+  if (laid_) laid_->OnLine(line);
   for (auto& r : rules_) {
     r->saw_input_ = true;
     r->OnLine(line);
@@ -126,6 +141,7 @@ void Verifier::CloseWindow() {
 void Verifier::Finish(Report& report) {
   if (window_.Active()) CloseWindow();
   for (auto& r : rules_) r->Finish(ctx_);
+  if (laid_) laid_->Finish();
   report.rules.clear();
   report.errors = 0;
   report.warnings = 0;

@@ -71,5 +71,10 @@ bool PlanConstraint(const CloseUpContext& ctx, const verify::Rule& rule,
                     const trace::TraceSample* s, CloseUpPlan& plan);
 /// afp.* and any other rule: the head at the sample, the roller or the tool point in view.
 bool PlanHead(const CloseUpContext& ctx, const trace::TraceSample& s, CloseUpPlan& plan);
+/// afp.* with a finding placed on the part (close_up_afp.cpp): the finding's place from
+/// above, the rule's drawn points near it as the subject, the laid course edges around it,
+/// the head lifted clear (the model posed); false with `error` when the model cannot be posed.
+bool PlanAfp(const CloseUpContext& ctx, const verify::Rule& rule, const verify::Finding& focus,
+             CloseUpPlan& plan, std::string& error);
 
 }  // namespace stitchsim::run::close_up

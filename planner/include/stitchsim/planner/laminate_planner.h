@@ -82,6 +82,17 @@ struct LaminatePlan {
   double laid_length_mm = 0.0;
 };
 
+/// Stacks `plans` in order as PlanLaminate does: each plan's poses and tow edges lifted along
+/// the surface normal by the thickness the plans before it lay (a ThicknessField of
+/// `cell_mm`), then its own tows added at `thickness_mm[i]`. Returns per plan the smallest and
+/// largest thickness below it; `max_mm` (may be null) gets the stack's largest, `cell` (may
+/// be null) the field's cell. For `plan ply` of several plies and for PlanLaminate.
+std::vector<std::pair<double, double>> StackPlies(const geom::Surface& surface,
+                                                  const std::vector<PlyPlan*>& plans,
+                                                  const std::vector<double>& thickness_mm,
+                                                  double cell_mm, double* max_mm = nullptr,
+                                                  double* cell = nullptr);
+
 /// Plans `laminate` (one of scene.laminates). Diagnostics: PlanPly's for each ply (in stack
 /// order), plan-laminate-stagger when a course cannot hold W / (w + 1) >= the stagger offset
 /// for plies of an angle stacked more than once. Nullopt when any ply fails.

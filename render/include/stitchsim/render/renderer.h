@@ -30,6 +30,12 @@ struct Overlay {
   float rgba[4] = {0.1f, 0.9f, 0.2f, 1.0f};
   /// Polyline only: the last segment is drawn as an arrow pointing at the last point.
   bool arrow_head = false;
+  /// Polyline only, one per point when given (world, unit): each segment is drawn as a flat
+  /// ribbon instead of a capsule, a thin box 2 * radius_m wide across the segment, lying in
+  /// the plane normal to its ends' mean normal (laid tows on a part), `ribbon_thickness_m`
+  /// thick.
+  std::vector<Eigen::Vector3d> normals;
+  double ribbon_thickness_m = 0.0002;
 };
 
 /// A geom drawn in another colour for one picture.

@@ -3,8 +3,9 @@
 // the rule's close-up family (verify::Rule::CloseUp(): collisions framed on the two bodies in
 // contact, needle and stitch rules on the needles with the preform as a section, kinematic
 // rules on the whole arm with the offending joint's link, constraint crossings from above, AFP
-// rules on the roller) as data, then shot: the direction that shows the subjects largest and
-// least hidden, whatever still hides them made see-through, checked on a segmentation.
+// rules on their worst finding's place on the part, else the roller) as data, then shot: the
+// direction that shows the subjects largest and least hidden, whatever still hides them made
+// see-through, checked on a segmentation.
 
 #include <mujoco/mujoco.h>
 
@@ -54,10 +55,13 @@ struct CloseUpContext {
   mjData* data = nullptr;    ///< not owned; posed by PlanCloseUp at the picture's joints
   /// Not owned; every stitch by verdict (part frame, mm), for the constraint close-up.
   const std::vector<verify::StitchMark>* stitches = nullptr;
+  /// Not owned, may be null; the finished verifier: its rules' drawings (afp close-ups).
+  const verify::Verifier* verifier = nullptr;
 };
 
-/// The finding a rule's close-up is about: the error at the worst sample's line, else the
-/// first error, else the first finding; null when the rule kept none.
+/// The finding a rule's close-up is about: the error at the worst sample's line (an afp rule
+/// without a sample: at its worst line), else the first error, else the first finding; null
+/// when the rule kept none.
 const verify::Finding* FocusFinding(const verify::Rule& rule);
 
 /// The close-up of `rule` (which has errors), the model posed in ctx.data; nullopt for a rule

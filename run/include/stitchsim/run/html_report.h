@@ -1,7 +1,7 @@
 #pragma once
 // `verify --html`: one self-contained HTML file (docs/report-format.md, "HTML report"): the
 // report, the snapshots, and the data the page's 3D view and plots draw (the cell's bodies
-// and meshes, the part, the stitches or tows by verdict, the robot's poses along the
+// and meshes, the part, the stitches by verdict, the AFP laid tows, the robot's poses along the
 // programme, every rule's values along it), with three.js embedded at build time.
 
 #include <cstddef>
@@ -35,6 +35,9 @@ struct HtmlLimits {
   std::size_t max_poses = 60000;      ///< thinned line-end poses (finding lines always kept)
   std::size_t max_faces = 300000;     ///< mesh faces of the cell and part together
   std::size_t max_findings = 5000;    ///< findings listed (the report keeps 200 a rule)
+  /// AFP laid tows: floats of the strips' stations (fraction, tool, normal, tow edges), ~4
+  /// bytes each before base64; past it stations merge and strips become one ribbon.
+  std::size_t max_laid_values = 4000000;
 };
 
 /// The page's data (the JSON the page reads); `error` set and null on failure.

@@ -32,6 +32,10 @@ struct RenderRequest {
     std::array<float, 4> rgba = {0.1f, 0.9f, 0.2f, 1.0f};  ///< RGBA in [0, 1]
     double radius_scale = 1.0;                             ///< times the view's point radius
     bool polyline = false;  ///< connect the points (else one sphere each)
+    /// Polyline only, one per point when given (part frame, unit): drawn as a flat ribbon
+    /// lying on that normal (render::Overlay::normals), radius_mm wide each side.
+    std::vector<Eigen::Vector3d> normals_part;
+    double radius_mm = 0.0;  ///< > 0: this half width (mm), not the view's point radius
   };
   std::vector<PointSet> point_sets;
   /// Applied to the picture before it is written (snapshots: title bar and legend).

@@ -56,6 +56,7 @@ enum class LimitKey : int {
   kAfpCompactionMaxPressMm,
   kAfpCompactionMaxRollDeg,
   kAfpCompactionMaxLeanDeg,
+  kAfpCompactionMaxStandoffFraction,
   kAfpCoverageMaxBarePct,  ///< afp.coverage max_bare_pct
   kAfpCoverageMaxDoubledPct,
   kAfpMinTowLengthMm,     ///< afp.min_tow_length min_mm

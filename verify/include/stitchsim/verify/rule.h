@@ -19,6 +19,10 @@
 
 namespace stitchsim::verify {
 
+namespace detail {
+struct RuleMaking;  // what the factories of one MakeRules call share (detail/rule_registry.h)
+}  // namespace detail
+
 /// A closed needle window: the needles went in and came out again.
 struct WindowRecord {
   long stitch = 0;
@@ -149,12 +153,15 @@ class Rule {
   /// Counts one checked item and records a finding when `value` exceeds a limit
   /// (upper-bound check). `what()` names the measured quantity; it is only called for a
   /// finding, so the hot path formats nothing. Returns the severity recorded, if any.
+  /// `position` (part frame, mm; may be null): where the value was measured, for a finding
+  /// made without a sample (afp.gap's edge point); else the sample's tool point.
   template <typename WhatFn>
   std::optional<FindingSeverity> CheckUpper(double value, int line, long stitch,
                                             const std::string& subject, WhatFn&& what,
-                                            const trace::TraceSample* sample) {
+                                            const trace::TraceSample* sample,
+                                            const Eigen::Vector3d* position = nullptr) {
     const std::optional<FindingSeverity> sev = Classify(value, line, stitch, sample);
-    if (sev) RecordExceeded(*sev, value, line, stitch, subject, what(), sample);
+    if (sev) RecordExceeded(*sev, value, line, stitch, subject, what(), sample, position);
     return sev;
   }
   void Counted() { ++summary_.checked; }
@@ -163,7 +170,7 @@ class Rule {
                                           const trace::TraceSample* sample);
   void RecordExceeded(FindingSeverity severity, double value, int line, long stitch,
                       const std::string& subject, const std::string& what,
-                      const trace::TraceSample* sample);
+                      const trace::TraceSample* sample, const Eigen::Vector3d* position = nullptr);
   /// Records a finding directly (for yes/no rules). Findings are one per line: a second
   /// finding on a line already reported merges into it (the worse one's value, subject and
   /// message stay; error beats warning, then the larger value over its limit).
@@ -198,7 +205,8 @@ class Rule {
  private:
   friend class Verifier;  // marks saw_input_
   // Sets close_up_ from the rule's registry entry.
-  friend std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx);
+  friend std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx,
+                                                      detail::RuleMaking& making);
 
   /// A line that had a finding: its severity so far and the finding's index (npos when the
   /// finding was not kept, past kMaxFindingsPerRule).
@@ -234,6 +242,9 @@ class Rule {
 /// Every rule that runs in `ctx` (rule_registry.h: RulePresence::kRuns), in report order, with
 /// limits from `ctx`.
 std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx);
+/// The same, the factories sharing `making` (detail/rule_registry.h: the afp.* rules' one
+/// sampler, which the verifier reads too).
+std::vector<std::unique_ptr<Rule>> MakeRules(const RuleContext& ctx, detail::RuleMaking& making);
 /// The rules MakeRules leaves out on purpose (RulePresence::kSkipped: no collision world, no
 /// timed trajectory, no payload data), in registry order, with the reason.
 std::vector<SkippedRule> SkippedRules(const RuleContext& ctx);

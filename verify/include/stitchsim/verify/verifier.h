@@ -11,11 +11,16 @@
 
 #include "stitchsim/process/stitch_cycle.h"
 #include "stitchsim/trace/trace.h"
+#include "stitchsim/verify/afp_laid_material.h"
 #include "stitchsim/verify/laydown.h"
 #include "stitchsim/verify/report.h"
 #include "stitchsim/verify/rule.h"
 
 namespace stitchsim::verify {
+
+namespace detail {
+class LaidMaterialBuilder;  // verify/src/afp_laid_material_builder.h
+}  // namespace detail
 
 /// One stitch as the verifier saw it (for the overview snapshot).
 struct StitchMark {
@@ -29,8 +34,10 @@ class Verifier : public trace::TraceSink {
  public:
   /// What `ctx` points to must outlive the verifier (`ctx` itself is copied: a temporary is
   /// fine). With `keep_stitch_marks`, every stitch's position and worst severity is kept for
-  /// the overview snapshot (13 bytes a stitch).
+  /// the overview snapshot (13 bytes a stitch); with an AFP head, what the programme laid
+  /// instead (Laid(); afp_laid_material.h gives its bytes).
   Verifier(const RuleContext& ctx, bool keep_stitch_marks);
+  ~Verifier() override;
   /// Rules refer to the verifier's own copy of the context: it stays where it is.
   Verifier(const Verifier&) = delete;
   Verifier& operator=(const Verifier&) = delete;
@@ -43,6 +50,9 @@ class Verifier : public trace::TraceSink {
 
   const std::vector<std::unique_ptr<Rule>>& Rules() const { return rules_; }
   const std::vector<StitchMark>& StitchMarks() const { return marks_; }
+  /// What the programme laid (afp_laid_material.h), complete after Finish; empty unless the
+  /// verifier keeps stitch marks and the head is AFP.
+  const LaidMaterial& Laid() const;
 
   // Chunked runs: a programme cut at lines where the needles are out (stitching off or the head
   // retracted) into parts, each verified by its own verifier, merged in programme order.
@@ -109,6 +119,8 @@ class Verifier : public trace::TraceSink {
   /// AFP heads: the laydown figures (report.laydown); null for a stitching head. Like the
   /// afp.* rules it judges the programme whole (AFP programmes are verified in one part).
   std::unique_ptr<LaydownMeter> laydown_;
+  /// AFP heads with keep_stitch_marks: fills Laid(); null otherwise.
+  std::unique_ptr<detail::LaidMaterialBuilder> laid_;
 };
 
 }  // namespace stitchsim::verify
