@@ -10,11 +10,8 @@ std::string_view ThreeJs();
 std::string_view OrbitControlsJs();
 std::string_view ReportTemplateHtml();
 std::string_view ReportJs();
-<<<<<<< HEAD
+std::string_view AfpViewJs();
 std::string_view SequenceTemplateHtml();  ///< `sequence --html`'s page (html/sequence.html)
 std::string_view SequenceJs();            ///< and its script (html/sequence.js)
-=======
-std::string_view AfpViewJs();
->>>>>>> main
 
 }  // namespace stitchsim::run

@@ -137,7 +137,8 @@ json SequencePageData(const SequenceRun& run, const program::AfpProgram& program
 
 std::string SequenceHtmlPage(const SequenceRun& run, const program::AfpProgram& program,
                              std::string& error) {
-  return HtmlPageOf(SequenceTemplateHtml(), SequenceJs(), SequencePageData(run, program), error);
+  return HtmlPageOf(SequenceTemplateHtml(), SequenceJs(), {}, SequencePageData(run, program),
+                    error);
 }
 
 }  // namespace stitchsim::run

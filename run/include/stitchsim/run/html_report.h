@@ -47,10 +47,11 @@ nlohmann::json HtmlData(const HtmlInputs& in, const HtmlLimits& limits, std::str
 /// "" with `error` set when an asset cannot be embedded safely.
 std::string HtmlPage(const nlohmann::json& data, std::string& error);
 
-/// The same for any page: `page_template` with its four markers (<!--STITCHSIM:THREE-->,
-/// ORBIT, APP, DATA) replaced by three.js, its orbit controls, `app_js` and `data`.
+/// The same for any page: `page_template` with its markers (<!--STITCHSIM:THREE-->, ORBIT,
+/// APP, DATA, and AFP unless `afp_js` is empty) replaced by three.js, its orbit controls,
+/// `app_js`, `data` and `afp_js`.
 std::string HtmlPageOf(std::string_view page_template, std::string_view app_js,
-                       const nlohmann::json& data, std::string& error);
+                       std::string_view afp_js, const nlohmann::json& data, std::string& error);
 
 /// Writes the page whole or not at all. Errors: "html" (the data cannot be made), "internal"
 /// (an asset cannot be embedded: a bug), "io-write" (the file).
