@@ -44,10 +44,11 @@ std::vector<int> CoursesIn(const program::AfpProgram& program,
 // The programme's stretches with their course mapped into `original` (by ply and number), and
 // its visits in laying order (original course index, the lay-up's start as this programme lays
 // it: the other end for a course laid backwards).
-json PagePath(const program::AfpProgram& program, const program::AfpProgram& original) {
+json PagePath(const program::AfpProgram& program, const program::AfpProgram& original,
+              const Eigen::Vector3d& start) {
   const std::vector<int> map = CoursesIn(program, original);
   json stretches = json::array();
-  for (const OffPartStretch& s : OffPartStretches(program))
+  for (const OffPartStretch& s : OffPartStretches(program, start))
     stretches.push_back(
         json{{"course", s.course < 0 ? -1 : map[static_cast<std::size_t>(s.course)]},
              {"length_mm", s.length_mm},
@@ -62,7 +63,8 @@ json PagePath(const program::AfpProgram& program, const program::AfpProgram& ori
 
 }  // namespace
 
-std::vector<OffPartStretch> OffPartStretches(const program::AfpProgram& program) {
+std::vector<OffPartStretch> OffPartStretches(const program::AfpProgram& program,
+                                             const Eigen::Vector3d& start) {
   // Lay-up line ranges in line order: a move ending on a line in (first, last] is a lay-up move.
   std::vector<std::pair<int, int>> layups;  // (layup_first_line, course)
   for (std::size_t c = 0; c < program.courses.size(); ++c)
@@ -72,6 +74,10 @@ std::vector<OffPartStretch> OffPartStretches(const program::AfpProgram& program)
   const auto& path = program.tool_path;
   std::size_t next = 0;  // the next lay-up not yet begun
   OffPartStretch cur;
+  if (!path.empty() && path.front().point != start) {  // from the start to the first point
+    cur.points = {start, path.front().point};
+    cur.length_mm = (path.front().point - start).norm();
+  }
   auto close = [&](int course) {
     cur.course = course;
     if (cur.points.size() >= 2) out.push_back(std::move(cur));
@@ -106,11 +112,11 @@ std::optional<program::AfpProgram> ReadBackSequenced(const SequenceInputs& input
 }
 
 void FillPlyFlown(const program::AfpProgram& original, const program::AfpProgram& sequenced,
-                  SequenceOutcome& o) {
+                  const Eigen::Vector3d& start, SequenceOutcome& o) {
   std::map<int, std::size_t> ply_index;
   for (std::size_t p = 0; p < o.plies.size(); ++p) ply_index[o.plies[p].ply] = p;
   auto add = [&](const program::AfpProgram& prog, bool after) {
-    for (const OffPartStretch& s : OffPartStretches(prog)) {
+    for (const OffPartStretch& s : OffPartStretches(prog, start)) {
       const auto& course =
           s.course >= 0 ? prog.courses[static_cast<std::size_t>(s.course)] : prog.courses.back();
       PlyOutcome& ply = o.plies[ply_index.at(course.ply)];
@@ -128,11 +134,12 @@ json SequencePageData(const SequenceRun& run, const program::AfpProgram& program
     for (const auto& st : c.stations) points.push_back(st.pose.translation());
     courses.push_back(json{{"ply", c.ply}, {"course", c.number}, {"points", PagePoints(points)}});
   }
-  return json{{"stitchsim_sequence_page", 1},
-              {"report", SequenceReportJson(run.outcome, program)},
-              {"courses", std::move(courses)},
-              {"before", PagePath(program, program)},
-              {"after", run.sequenced ? PagePath(*run.sequenced, program) : json(nullptr)}};
+  return json{
+      {"stitchsim_sequence_page", 1},
+      {"report", SequenceReportJson(run.outcome, program)},
+      {"courses", std::move(courses)},
+      {"before", PagePath(program, program, run.start_mm)},
+      {"after", run.sequenced ? PagePath(*run.sequenced, program, run.start_mm) : json(nullptr)}};
 }
 
 std::string SequenceHtmlPage(const SequenceRun& run, const program::AfpProgram& program,

@@ -429,7 +429,12 @@ SequenceRun RunSequence(const SequenceInputs& in, const SequenceOptions& options
   BoundSets(options, an.ends, specs[static_cast<std::size_t>(o.measure)], o);
   SequenceCostsOf(an.ends, specs, in.program, o);
   o.layup = LayupCosts(cell, in.program, specs[0], *timed);
-  o.flown_offpart_before_mm = in.program.offpart_length_mm;
+  // Both flown from home: the original from its first point when home is that (the default).
+  run.start_mm = in.home.translation();
+  o.flown_offpart_before_mm =
+      in.program.offpart_length_mm +
+      (in.program.tool_path.empty() ? 0.0
+                                    : (in.program.tool_path.front().point - run.start_mm).norm());
   run.offpart = SequenceOffPart(in, o.after, o.return_home, &o.flown_offpart_after_mm);
   run.sequenced = ReadBackSequenced(in, run);
   if (!run.sequenced) {
@@ -437,7 +442,7 @@ SequenceRun RunSequence(const SequenceInputs& in, const SequenceOptions& options
     run.error = {"sequence-internal", "the sequenced programme does not read back"};
     return run;
   }
-  FillPlyFlown(in.program, *run.sequenced, o);
+  FillPlyFlown(in.program, *run.sequenced, run.start_mm, o);
   o.seconds = in.load_seconds +
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return run;

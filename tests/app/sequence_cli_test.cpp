@@ -222,13 +222,16 @@ TEST(Sequence, BadProgrammesAreExit2AtTheirLine) {
   }
 }
 
-// `--html` to a path that cannot be written: exit 2 with the path named, and nothing written
+// `--html` to a path that cannot be written (its folder is a file): exit 2 with the path named,
+// and nothing written
 // (the programme, the report and the page are one set). Written: the page and the report
 // both hold the report's JSON (tests/run/sequence_html_test.cpp checks the page's copy).
 TEST(Sequence, HtmlToAnUnwritablePathWritesNothing) {
   const fs::path out = testing::ScratchDir() / "panel_html_out.nc";
   const fs::path rep = testing::ScratchDir() / "panel_html_out.json";
-  const fs::path bad = testing::ScratchDir() / "no_such_folder" / "page.html";
+  const fs::path not_a_folder = testing::ScratchDir() / "html_parent_is_a_file";
+  std::ofstream(not_a_folder) << "a file, not a folder\n";
+  const fs::path bad = not_a_folder / "page.html";
   const std::string base = "sequence " + PanelProgramme().string() + " --scene " + kPanel.string() +
                            " -o " + out.string() + " --report " + rep.string() + " --html ";
   const CliRun r = Cli(base + bad.string());

@@ -54,7 +54,7 @@ TEST(SequenceHtml, StretchesOfAHandWrittenProgrammeAreTheMovesOutsideTheLayups) 
   DiagnosticSink sink;
   const auto p = program::ReadAfpProgram(text, program::Dialect::Default(), "t.nc", sink);
   ASSERT_TRUE(p.has_value());
-  const auto s = OffPartStretches(*p);
+  const auto s = OffPartStretches(*p, Eigen::Vector3d(0, 0, 100));  // from its first point
   ASSERT_EQ(s.size(), 3u);
   // Down onto course 1: 100 mm; up, across to (30, 0, 100) and down: 100 + hypot(30, 100) +
   // 100; up after course 2: 100.
@@ -68,6 +68,11 @@ TEST(SequenceHtml, StretchesOfAHandWrittenProgrammeAreTheMovesOutsideTheLayups) 
   EXPECT_EQ(s[2].course, -1);
   EXPECT_NEAR(s[2].length_mm, 100.0, 1e-9);
   EXPECT_NEAR(s[0].length_mm + s[1].length_mm + s[2].length_mm, p->offpart_length_mm, 1e-9);
+  // Flown from elsewhere: the move from there to (0, 0, 100) leads the first stretch.
+  const auto h = OffPartStretches(*p, Eigen::Vector3d(-40, 0, 130));
+  ASSERT_EQ(h.size(), 3u);
+  EXPECT_NEAR(h[0].length_mm, 100.0 + 50.0, 1e-9);  // hypot(40, 30) = 50
+  EXPECT_NEAR((h[0].points.front() - Eigen::Vector3d(-40, 0, 130)).norm(), 0.0, 1e-12);
 }
 
 class SequenceHtmlTest : public ::testing::Test {
@@ -108,8 +113,8 @@ TEST_F(SequenceHtmlTest, PageEmbedsTheReportAndStretchesAddUpToTheFlownLengths) 
   // Second routes: the reader's moved length less the lay-ups (before), the writer's blocks
   // (SequenceOffPart, after).
   double before = 0.0, after = 0.0;
-  for (const auto& s : OffPartStretches(in.program)) before += s.length_mm;
-  for (const auto& s : OffPartStretches(*r.sequenced)) after += s.length_mm;
+  for (const auto& s : OffPartStretches(in.program, r.start_mm)) before += s.length_mm;
+  for (const auto& s : OffPartStretches(*r.sequenced, r.start_mm)) after += s.length_mm;
   EXPECT_NEAR(before, out.flown_offpart_before_mm, 1e-6);
   EXPECT_NEAR(after, out.flown_offpart_after_mm, 1e-6);
   EXPECT_LT(after, 0.8 * before);  // the zig-zag-free plan still gains from the joins

@@ -23,9 +23,11 @@ struct OffPartStretch {
   double length_mm = 0.0;               ///< polyline length
 };
 
-/// The off-part stretches of `program.tool_path` (every gap with at least one move), in order;
-/// their lengths add up to program.offpart_length_mm.
-std::vector<OffPartStretch> OffPartStretches(const program::AfpProgram& program);
+/// The off-part stretches of `program.tool_path` (every gap with at least one move), in order,
+/// flown from `start` (part frame, mm: the move from it to the path's first point leads the
+/// first stretch); their lengths add up to program.offpart_length_mm plus that move.
+std::vector<OffPartStretch> OffPartStretches(const program::AfpProgram& program,
+                                             const Eigen::Vector3d& start);
 
 /// The sequenced programme written (WriteSequencedProgram) and read back; nullopt if it does
 /// not read (a bug).
@@ -34,9 +36,9 @@ std::optional<program::AfpProgram> ReadBackSequenced(const SequenceInputs& input
 
 /// Fills each ply's flown_before_mm / flown_after_mm (o.plies, programme order) from the two
 /// programmes' stretches: a stretch counts for the ply of the course it leads into, the last
-/// (after every course) for the last course's ply.
+/// (after every course) for the last course's ply. Both flown from `start` (part frame, mm).
 void FillPlyFlown(const program::AfpProgram& original, const program::AfpProgram& sequenced,
-                  SequenceOutcome& o);
+                  const Eigen::Vector3d& start, SequenceOutcome& o);
 
 /// The page's data: {"report": SequenceReportJson, "courses": per course (programme order) its
 /// ply, number and lay-up polyline, "before" / "after": each programme's stretches and visits

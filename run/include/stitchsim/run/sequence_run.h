@@ -157,6 +157,8 @@ struct SequenceRun {
   /// The sequenced programme (WriteSequencedProgram) read back: its tool path is the new one
   /// the page draws and the plies' flown_after_mm measure. With kOk only.
   std::optional<program::AfpProgram> sequenced;
+  /// Where the head starts, both programmes flown from it (SequenceInputs::home), part frame, mm.
+  Eigen::Vector3d start_mm = Eigen::Vector3d::Zero();
 };
 
 /// Orders the courses of every precedence set (or lays `inputs.given_order`), from home,
