@@ -3,13 +3,19 @@
 // writes the programme (and a JSON report) whole or not at all (docs/sequence.md). The run is
 // run::RunSequence; this file parses, prints and picks the exit code.
 #include <cstdio>
+#include <filesystem>
 #include <iterator>
 #include <memory>
+#include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cli_common.h"
 #include "commands.h"
 #include "plan_progress.h"
+#include "stitchsim/common/files.h"
+#include "stitchsim/run/sequence_html.h"
 #include "stitchsim/run/sequence_report.h"
 #include "stitchsim/run/sequence_run.h"
 
@@ -18,7 +24,7 @@ namespace {
 
 struct SequenceArgs {
   run::SequenceOptions run;
-  std::string report, cost = "axes", solver = "local";
+  std::string report, html, cost = "axes", solver = "local";
   bool quiet = false;  // no progress on stderr
 };
 
@@ -88,9 +94,32 @@ void PrintSequenceSummary(const run::SequenceOutcome& o) {
       fb, fa, Change(fb, fa), fb + l, fa + l, Change(fb + l, fa + l));
 }
 
+// The programme, the report (if asked) and the page written as a set: all or none.
+int WriteWithPage(const SequenceArgs& a, const run::SequenceInputs& in, const run::SequenceRun& r) {
+  std::string error;
+  const std::string page = run::SequenceHtmlPage(r, in.program, error);
+  if (page.empty()) {
+    PrintError("internal", "--html: " + error);
+    return kExitInternal;
+  }
+  std::ostringstream program, report;
+  run::WriteSequencedProgram(in, r, program);
+  std::vector<std::pair<std::filesystem::path, std::string>> files{
+      {a.run.output_file, program.str()}, {a.html, page}};
+  if (!a.report.empty()) {
+    run::WriteSequenceJson(r.outcome, in.program, report);
+    files.emplace_back(a.report, report.str());
+  }
+  if (error = WriteFilesAtomically(files); !error.empty()) {
+    PrintError("io-write", error);
+    return kExitBadInput;
+  }
+  return kExitOk;
+}
+
 int RunSequenceCommand(SequenceArgs& a) {
   run::SequenceOptions& o = a.run;
-  if (!OutputsDistinct({{"--output", o.output_file}, {"--report", a.report}}) ||
+  if (!OutputsDistinct({{"--output", o.output_file}, {"--report", a.report}, {"--html", a.html}}) ||
       !ProgramInputOk(o.program_file))
     return kExitBadInput;
   o.scene_load = SceneLoadOptions();
@@ -122,9 +151,13 @@ int RunSequenceCommand(SequenceArgs& a) {
       PrintError(r.error.code, r.error.message);
       return r.status == run::SequenceStatus::kBadOrder ? kExitBadInput : kExitInternal;
   }
-  const int written = WriteProgramAndCsv(
-      o.output_file, a.report, [&](std::ostream& out) { run::WriteSequencedProgram(*in, r, out); },
-      [&](std::ostream& out) { run::WriteSequenceJson(r.outcome, in->program, out); });
+  const int written =
+      a.html.empty()
+          ? WriteProgramAndCsv(
+                o.output_file, a.report,
+                [&](std::ostream& out) { run::WriteSequencedProgram(*in, r, out); },
+                [&](std::ostream& out) { run::WriteSequenceJson(r.outcome, in->program, out); })
+          : WriteWithPage(a, *in, r);
   if (written != kExitOk) return written;
   PrintSequenceSummary(r.outcome);
   return kExitOk;
@@ -144,7 +177,11 @@ void AddSequenceCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--scene", a->run.scene_file, "Scene YAML file (its surface, plies and AFP head)")
       ->required();
   cmd->add_option("-o,--output", a->run.output_file, "Programme file to write")->required();
-  cmd->add_option("--report", a->report, "JSON report: costs per set and the course order");
+  cmd->add_option("--report", a->report,
+                  "JSON report: costs per set and per ply, and the course order");
+  cmd->add_option("--html", a->html,
+                  "HTML page: per ply the courses and the original and new off-part paths side "
+                  "by side, with the report's figures");
   cmd->add_option("--cost", a->cost,
                   "Cost to minimise: axes (seed eq. 3.4), time, tool, timed (the controller's "
                   "time law)")

@@ -183,6 +183,7 @@ void Reader::Block(const program::Block& b, const ModalState& modal, AfpProgram&
       const Eigen::Vector3d p(*s[Axis::kX], *s[Axis::kY], *s[Axis::kZ]);
       if (last_point_) moved_mm_ += (p - *last_point_).norm();
       last_point_ = p;
+      out.tool_path.push_back({b.source_line, p});
     }
   }
   if (HasMeaning(dialect_, b, MMeaning::kPlyStart) && s.ply != 0) StartPly(b, s, out);

@@ -11,5 +11,7 @@ std::string_view OrbitControlsJs();
 std::string_view ReportTemplateHtml();
 std::string_view ReportJs();
 std::string_view AfpViewJs();
+std::string_view SequenceTemplateHtml();  ///< `sequence --html`'s page (html/sequence.html)
+std::string_view SequenceJs();            ///< and its script (html/sequence.js)
 
 }  // namespace stitchsim::run

@@ -216,6 +216,11 @@ json HtmlData(const HtmlInputs& in, const HtmlLimits& limits, std::string& error
 }
 
 std::string HtmlPage(const json& data, std::string& error) {
+  return HtmlPageOf(ReportTemplateHtml(), ReportJs(), AfpViewJs(), data, error);
+}
+
+std::string HtmlPageOf(std::string_view page_template, std::string_view app_js,
+                       std::string_view afp_js, const json& data, std::string& error) {
   std::string text = data.dump(-1, ' ', false, json::error_handler_t::replace);
   // Inside <script>: "</" would end the element early.
   std::string safe;
@@ -228,7 +233,6 @@ std::string HtmlPage(const json& data, std::string& error) {
       safe += text[i];
     }
   }
-  const std::string_view page = ReportTemplateHtml();
   struct Part {
     std::string_view marker;
     std::string open;
@@ -237,12 +241,13 @@ std::string HtmlPage(const json& data, std::string& error) {
   const Part parts[] = {
       {"<!--STITCHSIM:THREE-->", "<script>", ThreeJs()},
       {"<!--STITCHSIM:ORBIT-->", "<script>", OrbitControlsJs()},
-      {"<!--STITCHSIM:APP-->", "<script>", ReportJs()},
-      {"<!--STITCHSIM:AFP-->", "<script>", AfpViewJs()},
+      {"<!--STITCHSIM:APP-->", "<script>", app_js},
+      {"<!--STITCHSIM:AFP-->", "<script>", afp_js},
       {"<!--STITCHSIM:DATA-->", "<script id=\"stitchsim-data\" type=\"application/json\">", safe},
   };
-  std::string out(page);
+  std::string out(page_template);
   for (const Part& p : parts) {
+    if (p.marker == "<!--STITCHSIM:AFP-->" && afp_js.empty()) continue;
     if (p.body.find("</script") != std::string_view::npos) {
       error = "an embedded script contains </script> (" + std::string(p.marker) + ")";
       return "";

@@ -43,6 +43,19 @@ json SequenceSetJson(std::size_t k, const SetOutcome& s) {
               {"offpart_after", SequenceCostsJson(s.offpart_after)}};
 }
 
+json SequencePlyJson(const PlyOutcome& p) {
+  return json{{"ply", p.ply},
+              {"comment", p.comment},
+              {"courses", p.courses},
+              {"offpart_before", SequenceCostsJson(p.offpart_before)},
+              {"offpart_after", SequenceCostsJson(p.offpart_after)},
+              {"flown_tool_mm", json{{"offpart_before", p.flown_before_mm},
+                                     {"offpart_after", p.flown_after_mm},
+                                     {"layup", p.layup_mm},
+                                     {"total_before", p.flown_before_mm + p.layup_mm},
+                                     {"total_after", p.flown_after_mm + p.layup_mm}}}};
+}
+
 json SequenceTotalsJson(const SequenceOutcome& o) {
   json totals;
   totals["offpart_before"] = SequenceCostsJson(o.offpart_before);
@@ -91,8 +104,7 @@ std::optional<int> OrderEntryCourse(const json& e, const std::string& where,
 
 }  // namespace
 
-void WriteSequenceJson(const SequenceOutcome& o, const program::AfpProgram& program,
-                       std::ostream& out) {
+json SequenceReportJson(const SequenceOutcome& o, const program::AfpProgram& program) {
   json j;
   j["stitchsim_sequence"] = 1;
   j["program"] = o.program_file;
@@ -120,7 +132,15 @@ void WriteSequenceJson(const SequenceOutcome& o, const program::AfpProgram& prog
                          {"set", o.set_of_course[static_cast<std::size_t>(v.course)] + 1}});
   }
   j["order"] = order;
-  out << j.dump(1) << '\n';
+  json plies = json::array();
+  for (const PlyOutcome& p : o.plies) plies.push_back(SequencePlyJson(p));
+  j["plies"] = plies;
+  return j;
+}
+
+void WriteSequenceJson(const SequenceOutcome& o, const program::AfpProgram& program,
+                       std::ostream& out) {
+  out << SequenceReportJson(o, program).dump(1) << '\n';
 }
 
 std::optional<std::vector<program::CourseVisit>> ReadOrderFile(const std::string& file,

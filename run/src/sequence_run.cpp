@@ -13,6 +13,7 @@
 #include "stitchsim/planner/sequence/offpart.h"
 #include "stitchsim/planner/sequence/solver.h"
 #include "stitchsim/process/afp_tows.h"
+#include "stitchsim/run/sequence_html.h"
 #include "stitchsim/run/sequence_timed.h"
 
 namespace stitchsim::run {
@@ -256,7 +257,12 @@ void SolveAndJoin(const SequenceOptions& options, const SequenceAnalysis& an,
 }
 
 // Off-part costs before and after, per set and overall, in every measure.
-void SequenceCostsOf(const CourseEnds& ends, const MeasureSpec* specs, SequenceOutcome& o) {
+// Per ply too (o.plies in programme order, one per AfpPly).
+void SequenceCostsOf(const CourseEnds& ends, const MeasureSpec* specs,
+                     const program::AfpProgram& program, SequenceOutcome& o) {
+  std::vector<std::size_t> ply_of_course(program.courses.size(), 0);
+  for (std::size_t p = 0; p < program.plies.size(); ++p)
+    for (const int c : program.plies[p].courses) ply_of_course[static_cast<std::size_t>(c)] = p;
   for (std::size_t mi = 0; mi < std::size(kMeasures); ++mi) {
     const Measure m = kMeasures[mi];
     const auto before = MoveCosts(ends, o.before, specs[mi], m, o.return_home);
@@ -270,6 +276,8 @@ void SequenceCostsOf(const CourseEnds& ends, const MeasureSpec* specs, SequenceO
         auto& set =
             o.sets[static_cast<std::size_t>(o.set_of_course[static_cast<std::size_t>(course)])];
         (is_after ? set.offpart_after : set.offpart_before)[mi] += moves[i];
+        PlyOutcome& ply = o.plies[ply_of_course[static_cast<std::size_t>(course)]];
+        (is_after ? ply.offpart_after : ply.offpart_before)[mi] += moves[i];
         total += moves[i];
       }
       (is_after ? o.offpart_after : o.offpart_before)[mi] = total;
@@ -352,6 +360,13 @@ SequenceOutcome SequenceOutcomeOf(const SequenceInputs& in, const SequenceOption
   }
   for (std::size_t c = 0; c < in.program.courses.size(); ++c)
     o.before.push_back({static_cast<int>(c), false});
+  for (const program::AfpPly& p : in.program.plies) {
+    PlyOutcome ply{
+        .ply = p.number, .comment = p.comment, .courses = static_cast<int>(p.courses.size())};
+    for (const int c : p.courses)
+      ply.layup_mm += in.program.courses[static_cast<std::size_t>(c)].layup_length_mm;
+    o.plies.push_back(std::move(ply));
+  }
   return o;
 }
 
@@ -412,10 +427,22 @@ SequenceRun RunSequence(const SequenceInputs& in, const SequenceOptions& options
     return run;
   }
   BoundSets(options, an.ends, specs[static_cast<std::size_t>(o.measure)], o);
-  SequenceCostsOf(an.ends, specs, o);
+  SequenceCostsOf(an.ends, specs, in.program, o);
   o.layup = LayupCosts(cell, in.program, specs[0], *timed);
-  o.flown_offpart_before_mm = in.program.offpart_length_mm;
+  // Both flown from home: the original from its first point when home is that (the default).
+  run.start_mm = in.home.translation();
+  o.flown_offpart_before_mm =
+      in.program.offpart_length_mm +
+      (in.program.tool_path.empty() ? 0.0
+                                    : (in.program.tool_path.front().point - run.start_mm).norm());
   run.offpart = SequenceOffPart(in, o.after, o.return_home, &o.flown_offpart_after_mm);
+  run.sequenced = ReadBackSequenced(in, run);
+  if (!run.sequenced) {
+    run.status = SequenceStatus::kInternal;
+    run.error = {"sequence-internal", "the sequenced programme does not read back"};
+    return run;
+  }
+  FillPlyFlown(in.program, *run.sequenced, run.start_mm, o);
   o.seconds = in.load_seconds +
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return run;

@@ -222,6 +222,32 @@ TEST(Sequence, BadProgrammesAreExit2AtTheirLine) {
   }
 }
 
+// `--html` to a path that cannot be written (its folder is a file): exit 2 with the path named,
+// and nothing written
+// (the programme, the report and the page are one set). Written: the page and the report
+// both hold the report's JSON (tests/run/sequence_html_test.cpp checks the page's copy).
+TEST(Sequence, HtmlToAnUnwritablePathWritesNothing) {
+  const fs::path out = testing::ScratchDir() / "panel_html_out.nc";
+  const fs::path rep = testing::ScratchDir() / "panel_html_out.json";
+  const fs::path not_a_folder = testing::ScratchDir() / "html_parent_is_a_file";
+  std::ofstream(not_a_folder) << "a file, not a folder\n";
+  const fs::path bad = not_a_folder / "page.html";
+  const std::string base = "sequence " + PanelProgramme().string() + " --scene " + kPanel.string() +
+                           " -o " + out.string() + " --report " + rep.string() + " --html ";
+  const CliRun r = Cli(base + bad.string());
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("io-write"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(bad.parent_path().string()), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(rep));
+  EXPECT_FALSE(fs::exists(bad));
+  const fs::path page = testing::ScratchDir() / "panel_html_out.html";
+  const CliRun ok = Cli(base + page.string());
+  ASSERT_EQ(ok.exit_code, 0) << ok.out << ok.err;
+  EXPECT_TRUE(fs::exists(out));
+  EXPECT_NE(testing::ReadText(page).find("\"stitchsim_sequence_page\":1"), std::string::npos);
+}
+
 // Done-when 1 on one of seed 004's parts (bench/seed004_cases.txt, planar_45): the 45 deg base
 // ply and three pad-ups, each ply laid zig-zag, reordered bidirectionally by tool distance:
 // the off-part path shrinks by more than half, precedence holds (base first), and the result

@@ -72,6 +72,13 @@ struct AfpPly {
   std::vector<int> courses;
 };
 
+/// The tool point after one block that moves (part frame, mm): the programme's path, every
+/// move in written order (its off-part stretches are the lines outside every lay-up).
+struct ToolPathPoint {
+  int line = 0;  ///< the block's source line
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+};
+
 struct AfpProgram {
   std::string file_name;
   ProgramHeader header;
@@ -87,6 +94,9 @@ struct AfpProgram {
   /// Off-part tool-point path length of the programme as written: every move outside the
   /// lay-ups (approaches, retracts, moves between courses), mm.
   double offpart_length_mm = 0.0;
+  /// Every block that sets the tool point (X, Y, Z all known), in order: the path whose
+  /// length less the lay-ups' is offpart_length_mm.
+  std::vector<ToolPathPoint> tool_path;
 
   std::string_view Line(int line) const;  ///< 1-based source line, without its newline
 };

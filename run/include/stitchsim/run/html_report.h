@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -45,6 +46,12 @@ nlohmann::json HtmlData(const HtmlInputs& in, const HtmlLimits& limits, std::str
 /// The page: the template with three.js, the app and `data` put in. Throws nothing; returns
 /// "" with `error` set when an asset cannot be embedded safely.
 std::string HtmlPage(const nlohmann::json& data, std::string& error);
+
+/// The same for any page: `page_template` with its markers (<!--STITCHSIM:THREE-->, ORBIT,
+/// APP, DATA, and AFP unless `afp_js` is empty) replaced by three.js, its orbit controls,
+/// `app_js`, `data` and `afp_js`.
+std::string HtmlPageOf(std::string_view page_template, std::string_view app_js,
+                       std::string_view afp_js, const nlohmann::json& data, std::string& error);
 
 /// Writes the page whole or not at all. Errors: "html" (the data cannot be made), "internal"
 /// (an asset cannot be embedded: a bug), "io-write" (the file).

@@ -2,6 +2,7 @@
 // The report of `stitchsim sequence` (docs/sequence.md, "Report"), and the reader of the
 // order it holds (`sequence --order`).
 #include <iosfwd>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,7 +12,11 @@
 
 namespace stitchsim::run {
 
-/// The JSON report: the run's settings, per set and overall costs, and the order chosen.
+/// The JSON report: the run's settings, per set, per ply and overall costs, and the order chosen.
+nlohmann::json SequenceReportJson(const SequenceOutcome& outcome,
+                                  const program::AfpProgram& program);
+
+/// SequenceReportJson written with one-space indentation.
 void WriteSequenceJson(const SequenceOutcome& outcome, const program::AfpProgram& program,
                        std::ostream& out);
 

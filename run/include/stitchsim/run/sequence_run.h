@@ -95,6 +95,18 @@ struct SetOutcome {
   std::optional<double> gap;
 };
 
+/// One ply's share of the run's figures: the move into a course counts for that course's ply,
+/// the moves after the last course (home) for the last course's ply, as a set's do.
+struct PlyOutcome {
+  int ply = 0;                              ///< its M70 P (the scene's `plies:` position)
+  std::string comment;                      ///< its M70 line's comment ("PLY name=... angle=...")
+  int courses = 0;                          ///< how many courses it has
+  Costs offpart_before{}, offpart_after{};  ///< every measure (units: MeasureUnit)
+  /// Off-part tool path (run/sequence_html.h OffPartStretches), mm: the programme as written
+  /// and the sequenced programme as written (read back); and its lay-ups' tool path, mm.
+  double flown_before_mm = 0.0, flown_after_mm = 0.0, layup_mm = 0.0;
+};
+
 /// Sets of at most this many courses are also solved exactly by every run (instant there), for
 /// the optimum and the gap; `measure_gap` raises it to planner::kMaxExactCourses.
 inline constexpr int kExactByDefaultCourses = 12;
@@ -108,9 +120,10 @@ struct SequenceOutcome {
   /// The precedence whose answer was taken: "course" (--course-level) or "ply"; with
   /// --course-level both are solved and the cheaper kept (every ply-level order is allowed).
   std::string precedence = "ply";
-  double joined_saving = 0.0;    ///< chosen measure: saved by solving neighbouring sets jointly
-  bool kept_programme = false;   ///< the whole answer cost more than the programme: not taken
-  std::vector<SetOutcome> sets;  ///< in laying order
+  double joined_saving = 0.0;     ///< chosen measure: saved by solving neighbouring sets jointly
+  bool kept_programme = false;    ///< the whole answer cost more than the programme: not taken
+  std::vector<SetOutcome> sets;   ///< in laying order
+  std::vector<PlyOutcome> plies;  ///< programme order (AfpProgram::plies)
   std::vector<program::CourseVisit> before, after;   ///< whole programme: as written, as chosen
   std::vector<int> set_of_course;                    ///< per course (programme order): its set
   Costs offpart_before{}, offpart_after{}, layup{};  ///< whole programme, every measure
@@ -141,6 +154,11 @@ struct SequenceRun {
   SequenceOutcome outcome;
   /// Off-part blocks of every gap of outcome.after: gap i before visit i, the last after it.
   std::vector<std::vector<program::OffPartBlock>> offpart;
+  /// The sequenced programme (WriteSequencedProgram) read back: its tool path is the new one
+  /// the page draws and the plies' flown_after_mm measure. With kOk only.
+  std::optional<program::AfpProgram> sequenced;
+  /// Where the head starts, both programmes flown from it (SequenceInputs::home), part frame, mm.
+  Eigen::Vector3d start_mm = Eigen::Vector3d::Zero();
 };
 
 /// Orders the courses of every precedence set (or lays `inputs.given_order`), from home,
