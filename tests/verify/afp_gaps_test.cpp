@@ -180,6 +180,52 @@ TEST(AfpGaps, ATowCutAtThePlyBoundaryIsLeftToTheCoveragePolicy) {
   EXPECT_EQ(gap->findings[1].line, 22);
 }
 
+// The band a tow width inside the ply's boundary is left to the coverage policy only where the
+// boundary meets the courses at a slant (tows cut one by one there leave bare triangles): a
+// 1 mm seam gap at v = 8 w .. 8 w + 1 with the ply's edge parallel to the courses half a tow
+// beyond it (v = 8.5 w + 1) is a gap on all four lines of course 2 (a seam 3 mm inside the ply,
+// which afp.coverage's 2 % of bare area would not see); with that edge slanted 30 deg across
+// the courses (a tow cut every 11 mm) the stretch of seam within a tow width of it is left to
+// the coverage policy.
+TEST(AfpGaps, ASeamGapBesideAParallelPlyEdgeIsAGapAndBesideASlantedEdgeIsNot) {
+  const double edge_v = 8.5 * kTowWidth + 1.0;
+  {
+    auto scene = AfpScene(geom::MakePlane(4000, 4000));
+    scene::PlySpec ply;
+    ply.name = "p";
+    ply.boundary_uv = {{-300, -60}, {300, -60}, {300, edge_v}, {-300, edge_v}};
+    scene->plies.push_back(ply);
+    const Report report =
+        RunLines(*scene, TwoCourses(*scene->surface, 16 * kTowWidth + 1.0, false));
+    const RuleSummary* gap = RuleOf(report, "afp.gap");
+    ASSERT_NE(gap, nullptr);
+    EXPECT_EQ(gap->errors, 4);
+    ASSERT_TRUE(gap->worst_value.has_value());
+    EXPECT_NEAR(*gap->worst_value, 1.0, 1e-6);
+  }
+  {
+    // The edge v = edge_v + u tan 30: course 2's facing edge (v = 8 w + 1) enters the ply at
+    // u = -5.5 and is within a tow width of the edge (measured square to it) for u in
+    // -18.2 .. 7.2. Outside it is trimmed off (line 20, and line 21 from u -100 to -18.2), in
+    // the band left to the coverage policy (lines 21 and 22 up to u 7.2), beyond it a gap
+    // (line 22 from u 7.2, line 23).
+    auto scene = AfpScene(geom::MakePlane(4000, 4000));
+    scene::PlySpec ply;
+    ply.name = "p";
+    const double k = std::tan(30.0 * kPi / 180.0);
+    ply.boundary_uv = {{-300, -60}, {300, -60}, {300, edge_v + 300 * k}, {-300, edge_v - 300 * k}};
+    scene->plies.push_back(ply);
+    const Report report =
+        RunLines(*scene, TwoCourses(*scene->surface, 16 * kTowWidth + 1.0, false));
+    const RuleSummary* gap = RuleOf(report, "afp.gap");
+    ASSERT_NE(gap, nullptr);
+    EXPECT_EQ(gap->errors, 2);
+    ASSERT_EQ(gap->findings.size(), 2u);
+    EXPECT_EQ(gap->findings[0].line, 22);
+    EXPECT_EQ(gap->findings[1].line, 23);
+  }
+}
+
 // Past the ply's end (extended tow ends are trimmed off the part) and within a tow width of its
 // boundary (left to the coverage policy) a gap or overlap between two courses is not judged: a
 // 1 mm gap along u -200..200 with the ply ending at u = 50 fires on lines 20 to 22 (each has

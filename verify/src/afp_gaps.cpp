@@ -17,6 +17,7 @@
 
 #include "afp_laid.h"
 #include "detail/rule_registry.h"
+#include "stitchsim/common/units.h"
 #include "stitchsim/geom/polygon2.h"
 #include "stitchsim/geom/surface_walk.h"
 
@@ -198,22 +199,41 @@ class CourseEdgeRule final : public Rule {
         nullptr, &p);
   }
 
-  // True when the edge point `e` is left to the coverage policy: within one tow width of the
-  // line's ply boundary (tows cut one by one where the boundary meets the course at a slant:
-  // the band afp.coverage judges bare and doubled area beyond), or outside the ply with the
-  // stretch to the facing edge `d` mm along e.outward (a gap; back against it: an overlap)
-  // outside too: that material is trimmed off the part (an extended tow end beside a
-  // neighbour's), so the ply has no gap or overlap there.
+  // True when the edge point `e` is left to the coverage policy: within one tow width of a
+  // stretch of the line's ply boundary that meets the course at a slant of kSlantDeg or more
+  // (tows cut one by one there leave bare triangles: the band afp.coverage judges bare and
+  // doubled area beyond; a seam beside an edge parallel to the courses is judged), or outside
+  // the ply with the stretch to the facing edge `d` mm along e.outward (a gap; back against
+  // it: an overlap) outside too: that material is trimmed off the part (an extended tow end
+  // beside a neighbour's), so the ply has no gap or overlap there.
   bool LeftToCoverage(const LaidLine& line, const EdgePoint& e, double d) const {
     if (line.ply < 1 || line.ply > static_cast<int>(boundaries_.size())) return false;
     const geom::Polygon2& boundary = boundaries_[static_cast<std::size_t>(line.ply - 1)];
-    if (geom::DistanceToPolygon(boundary, e.uv) <= width_mm_) return true;
+    if (SlantedBoundaryNear(boundary, e)) return true;
     if (geom::InsidePolygon(boundary, e.uv)) return false;
     for (int k = 1; k <= 4; ++k) {  // a stretch may cut a corner of the ply: four points on it
       const Eigen::Vector3d at = e.point + 0.25 * k * d * e.outward;
       if (geom::InsidePolygon(boundary, laid_->Surface().ProjectFrom(at, e.uv).uv)) return false;
     }
     return true;
+  }
+
+  // True when a segment of `boundary` within a tow width of `e` meets the course (the edge's
+  // direction there, in (u, v)) at kSlantDeg or more.
+  bool SlantedBoundaryNear(const geom::Polygon2& boundary, const EdgePoint& e) const {
+    constexpr double kSlantDeg = 5.0;
+    const geom::Surface& surface = laid_->Surface();
+    const Eigen::Vector3d along = surface.Normal(e.uv).cross(e.outward);
+    const Eigen::Vector2d t = surface.ProjectFrom(e.point + along, e.uv).uv - e.uv;
+    const double sin_min = std::sin(kSlantDeg * kPi / 180.0) * t.norm();
+    for (std::size_t i = 0, n = boundary.size(); i < n; ++i) {
+      const Eigen::Vector2d a = boundary[i], ab = boundary[(i + 1) % n] - a;
+      const double len2 = std::max(ab.squaredNorm(), 1e-300);
+      const double s = std::clamp((e.uv - a).dot(ab) / len2, 0.0, 1.0);
+      if ((a + s * ab - e.uv).norm() > width_mm_) continue;
+      if (std::abs(t.x() * ab.y() - t.y() * ab.x()) >= sin_min * std::sqrt(len2)) return true;
+    }
+    return false;
   }
 
   // True when the course's centre passes within half a course and a tow width of the boundary
