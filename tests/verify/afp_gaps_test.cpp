@@ -189,41 +189,34 @@ TEST(AfpGaps, ATowCutAtThePlyBoundaryIsLeftToTheCoveragePolicy) {
 // the coverage policy.
 TEST(AfpGaps, ASeamGapBesideAParallelPlyEdgeIsAGapAndBesideASlantedEdgeIsNot) {
   const double edge_v = 8.5 * kTowWidth + 1.0;
-  {
+  // afp.gap over the two courses 1 mm apart in a ply whose edge runs from (-300, left_v) to
+  // (300, right_v).
+  auto gap_beside = [&](double left_v, double right_v) {
     auto scene = AfpScene(geom::MakePlane(4000, 4000));
     scene::PlySpec ply;
     ply.name = "p";
-    ply.boundary_uv = {{-300, -60}, {300, -60}, {300, edge_v}, {-300, edge_v}};
+    ply.boundary_uv = {{-300, -60}, {300, -60}, {300, right_v}, {-300, left_v}};
     scene->plies.push_back(ply);
     const Report report =
         RunLines(*scene, TwoCourses(*scene->surface, 16 * kTowWidth + 1.0, false));
     const RuleSummary* gap = RuleOf(report, "afp.gap");
-    ASSERT_NE(gap, nullptr);
-    EXPECT_EQ(gap->errors, 4);
-    ASSERT_TRUE(gap->worst_value.has_value());
-    EXPECT_NEAR(*gap->worst_value, 1.0, 1e-6);
-  }
-  {
-    // The edge v = edge_v + u tan 30: course 2's facing edge (v = 8 w + 1) enters the ply at
-    // u = -5.5 and is within a tow width of the edge (measured square to it) for u in
-    // -18.2 .. 7.2. Outside it is trimmed off (line 20, and line 21 from u -100 to -18.2), in
-    // the band left to the coverage policy (lines 21 and 22 up to u 7.2), beyond it a gap
-    // (line 22 from u 7.2, line 23).
-    auto scene = AfpScene(geom::MakePlane(4000, 4000));
-    scene::PlySpec ply;
-    ply.name = "p";
-    const double k = std::tan(30.0 * kPi / 180.0);
-    ply.boundary_uv = {{-300, -60}, {300, -60}, {300, edge_v + 300 * k}, {-300, edge_v - 300 * k}};
-    scene->plies.push_back(ply);
-    const Report report =
-        RunLines(*scene, TwoCourses(*scene->surface, 16 * kTowWidth + 1.0, false));
-    const RuleSummary* gap = RuleOf(report, "afp.gap");
-    ASSERT_NE(gap, nullptr);
-    EXPECT_EQ(gap->errors, 2);
-    ASSERT_EQ(gap->findings.size(), 2u);
-    EXPECT_EQ(gap->findings[0].line, 22);
-    EXPECT_EQ(gap->findings[1].line, 23);
-  }
+    return gap == nullptr ? RuleSummary{} : *gap;
+  };
+  const RuleSummary parallel = gap_beside(edge_v, edge_v);
+  EXPECT_EQ(parallel.errors, 4);
+  ASSERT_TRUE(parallel.worst_value.has_value());
+  EXPECT_NEAR(*parallel.worst_value, 1.0, 1e-6);
+  // The edge v = edge_v + u tan 30: course 2's facing edge (v = 8 w + 1) enters the ply at
+  // u = -5.5 and is within a tow width of the edge (measured square to it) for u in
+  // -18.2 .. 7.2. Outside it is trimmed off (line 20, and line 21 from u -100 to -18.2), in
+  // the band left to the coverage policy (lines 21 and 22 up to u 7.2), beyond it a gap
+  // (line 22 from u 7.2, line 23).
+  const double k = std::tan(30.0 * kPi / 180.0);
+  const RuleSummary slanted = gap_beside(edge_v - 300 * k, edge_v + 300 * k);
+  EXPECT_EQ(slanted.errors, 2);
+  ASSERT_EQ(slanted.findings.size(), 2u);
+  EXPECT_EQ(slanted.findings[0].line, 22);
+  EXPECT_EQ(slanted.findings[1].line, 23);
 }
 
 // Past the ply's end (extended tow ends are trimmed off the part) and within a tow width of its
