@@ -1,0 +1,44 @@
+#pragma once
+// The per-ply AFP coverage map (verify --snapshots: coverage_ply<n>.png; docs/report-format.md,
+// "AFP coverage snapshots"): the ply's (u, v) plane with mm axes and a scale bar (u and v at one
+// scale), the afp.coverage map (laid, gaps, overlaps, bare band, laid outside; gaps and
+// overlaps thinner than a pixel enlarged), the laid material on it (course outlines, tow
+// boundaries, fibre direction arrows, add and cut points), a title block (ply, angle, courses,
+// tows laid, verdict, each afp rule's worst figure) and a legend.
+
+#include <string>
+#include <vector>
+
+#include "stitchsim/render/renderer.h"
+#include "stitchsim/render/text.h"
+#include "stitchsim/scene/scene.h"
+#include "stitchsim/verify/verifier.h"
+
+namespace stitchsim::run {
+
+/// One tick a picture's axis shows: the value its label prints (mm) and the pixel column (u
+/// axis) or row (v axis) of the tick mark, in the picture.
+struct AxisTick {
+  double mm = 0.0;
+  int pixel = 0;
+};
+
+/// One ply's coverage picture.
+struct CoveragePicture {
+  int ply = 0;       ///< M70 P<n>
+  std::string name;  ///< the ply's name (the scene's)
+  render::Image image;
+  std::vector<AxisTick> u_ticks;  ///< the u axis' ticks drawn, left to right
+  std::vector<AxisTick> v_ticks;  ///< the v axis' ticks drawn, bottom to top
+  double px_per_mm = 0.0;         ///< the map's scale, both axes (the scale bar's)
+  double scale_bar_mm = 0.0;      ///< the scale bar's length, mm
+};
+
+/// The pictures of a finished verifier run, one per ply afp.coverage measured (empty when it
+/// did not run); the laid material (Verifier::Laid(), empty without stitch marks) is drawn when
+/// kept. `scene` is the run's (ply angles); `fonts` from render::OpenSnapshotFonts.
+std::vector<CoveragePicture> AfpCoveragePictures(const verify::Verifier& verifier,
+                                                 const scene::Scene& scene,
+                                                 const render::SnapshotFonts& fonts);
+
+}  // namespace stitchsim::run
