@@ -21,9 +21,8 @@ namespace {
 
 using verify::CoverageState;
 
-constexpr int kCovMapW = 1000, kCovMapH = 900;  // the most the map takes, pixels
-constexpr double kCovMaxPxPerMm = 4.0;          // a small ply is not blown up past this
-constexpr double kCovMarginMm = 15.0;           // around what the map holds
+constexpr double kCovMaxPxPerMm = 4.0;  // a small ply is not blown up past this
+constexpr double kCovMarginMm = 15.0;   // around what the map holds
 constexpr int kCovLeft = 80, kCovGap = 40, kCovBottom = 75;
 constexpr int kCovFontWidth = 1400;  // the width the fonts are sized for
 constexpr int kMinFeaturePx = 3;     // gaps and overlaps thinner are drawn this wide
@@ -310,10 +309,11 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> Extent(const verify::CoverageImage& 
 }
 
 CoveragePicture Picture(const verify::Verifier& v, const scene::Scene& scene,
-                        const verify::CoverageImage& cov, const render::SnapshotFonts& fonts) {
+                        const verify::CoverageImage& cov, const render::SnapshotFonts& fonts,
+                        const Eigen::Vector2i& map_px) {
   const auto [lo, hi] = Extent(cov);
   const Eigen::Vector2d span = (hi - lo).cwiseMax(1e-6);
-  const double s = std::min({kCovMapW / span.x(), kCovMapH / span.y(), kCovMaxPxPerMm});
+  const double s = std::min({map_px.x() / span.x(), map_px.y() / span.y(), kCovMaxPxPerMm});
   uv::UvFrame f;
   f.width = std::max(1, static_cast<int>(std::lround(span.x() * s)));
   f.height = std::max(1, static_cast<int>(std::lround(span.y() * s)));
@@ -381,10 +381,11 @@ CoveragePicture Picture(const verify::Verifier& v, const scene::Scene& scene,
 
 std::vector<CoveragePicture> AfpCoveragePictures(const verify::Verifier& verifier,
                                                  const scene::Scene& scene,
-                                                 const render::SnapshotFonts& fonts) {
+                                                 const render::SnapshotFonts& fonts,
+                                                 const Eigen::Vector2i& map_px) {
   std::vector<CoveragePicture> out;
   for (const verify::CoverageImage& img : verify::CoverageImages(verifier)) {
-    out.push_back(Picture(verifier, scene, img, fonts));
+    out.push_back(Picture(verifier, scene, img, fonts, map_px.cwiseMax(16)));
   }
   return out;
 }

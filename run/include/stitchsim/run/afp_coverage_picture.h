@@ -6,6 +6,7 @@
 // boundaries, fibre direction arrows, add and cut points), a title block (ply, angle, courses,
 // tows laid, verdict, each afp rule's worst figure) and a legend.
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
 
@@ -36,9 +37,12 @@ struct CoveragePicture {
 
 /// The pictures of a finished verifier run, one per ply afp.coverage measured (empty when it
 /// did not run); the laid material (Verifier::Laid(), empty without stitch marks) is drawn when
-/// kept. `scene` is the run's (ply angles); `fonts` from render::OpenSnapshotFonts.
+/// kept. `scene` is the run's (ply angles); `fonts` from render::OpenSnapshotFonts. The map
+/// is as large as fits `map_px` (width, height; pixels) at one scale on u and v, at most 4 px
+/// a mm; the title, axes and legend come around it.
 std::vector<CoveragePicture> AfpCoveragePictures(const verify::Verifier& verifier,
                                                  const scene::Scene& scene,
-                                                 const render::SnapshotFonts& fonts);
+                                                 const render::SnapshotFonts& fonts,
+                                                 const Eigen::Vector2i& map_px = {1000, 900});
 
 }  // namespace stitchsim::run
