@@ -269,7 +269,31 @@ void DrawArrows(render::Image& out, const uv::UvFrame& f, const verify::LaidMate
   flush();
 }
 
-std::vector<uv::LegendRow> LegendOf(bool tow_lines) {
+// The seams afp.gap and afp.overlap measured (their drawn course-edge points of 0.1 mm or
+// more, projected onto the surface), red and amber lines 3 px wide: a seam narrower than the
+// coverage map's cells shows here too. Called only when the programme lays one ply (the
+// points do not name theirs).
+void DrawRuleSeams(render::Image& out, const uv::UvFrame& f, const verify::Verifier& v,
+                   const scene::Scene& scene) {
+  for (const auto& rule : v.Rules()) {
+    for (const verify::DrawnPoints& d : rule->Drawings()) {
+      const bool gap = d.label == "afp_gap";
+      if (!gap && d.label != "afp_overlap") continue;
+      const render::Rgb c =
+          kCoverageColours[static_cast<int>(gap ? CoverageState::kBare : CoverageState::kDoubled)];
+      // Consecutive points less than two tows apart joined: the seam as a line, not dots.
+      Eigen::Vector2d last(NAN, NAN);
+      for (std::size_t i = 0; i < d.points_mm.size(); ++i) {
+        const Eigen::Vector2d uv = scene.surface->Project(d.points_mm[i]).uv;
+        const bool join = i > 0 && (uv - last).norm() < 2 * v.Laid().tow_width_mm;
+        uv::Line(out, f.ToPixel(join ? last : uv), f.ToPixel(uv), 3, c);
+        last = uv;
+      }
+    }
+  }
+}
+
+std::vector<uv::LegendRow> LegendOf(bool tow_lines, bool seams) {
   using S = uv::LegendRow::Swatch;
   const auto c = [](CoverageState s) { return kCoverageColours[static_cast<int>(s)]; };
   return {
@@ -284,6 +308,9 @@ std::vector<uv::LegendRow> LegendOf(bool tow_lines) {
       {S::kFill, c(CoverageState::kDoubled), "overlap: laid twice or more"},
       {S::kNone, uv::kInk, "  gaps and overlaps to scale; thinner than"},
       {S::kNone, uv::kInk, "  3 px: enlarged to 3 px to be seen"},
+      {S::kNone, uv::kInk,
+       seams ? "  red / amber lines: seams afp.gap / overlap measured"
+             : "  afp.gap / overlap seams: not drawn (several plies)"},
       {S::kFill, c(CoverageState::kBoundaryBare), "bare in the boundary band (policy)"},
       {S::kFill, c(CoverageState::kOutside), "laid outside the ply"},
   };
@@ -322,7 +349,9 @@ CoveragePicture Picture(const verify::Verifier& v, const scene::Scene& scene,
   const verify::LaidMaterial& laid = v.Laid();
   const PlyFacts facts = FactsOf(laid, cov.ply);
   const bool tow_lines = laid.tow_width_mm * s >= kMinFeaturePx;
-  const std::vector<uv::LegendRow> legend = LegendOf(tow_lines);
+  const bool one_ply = std::all_of(laid.strips.begin(), laid.strips.end(),
+                                   [&](const verify::LaidStrip& x) { return x.ply == cov.ply; });
+  const std::vector<uv::LegendRow> legend = LegendOf(tow_lines, one_ply);
   const render::Font& font = *fonts.regular;
   CoveragePicture pic;
   pic.ply = cov.ply;
@@ -358,6 +387,7 @@ CoveragePicture Picture(const verify::Verifier& v, const scene::Scene& scene,
                kCoverageColours[static_cast<int>(st)]);
     }
   }
+  if (one_ply) DrawRuleSeams(img, f, v, scene);
   DrawArrows(img, f, laid, cov.ply);
   for (const verify::TowEvent& e : laid.events) {
     if (e.ply != cov.ply) continue;

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -26,25 +27,28 @@ constexpr double kMoveMm = 1.0;
 constexpr double kHalfHeadMm = 8 * 6.35;  // 16 tows of 6.35 mm: a course's half width
 constexpr render::Rgb kRed = {220, 30, 30};
 
-// The ply base_0 planned; its first course moved `dy` mm in y (0: as planned), verified with
-// the laid material kept. The two first courses' centre line y (programmed) into `ya`, `yb`.
-VerifyRun Verified(const testing::ScratchDir& dir, double move_mm, double& ya, double& yb) {
-  LoadedScene ls = testing::Bundled("seq_plate");
+// The ply `ply` planned; its course `moved` (0-based) moved `move_mm` in y away from course
+// `neighbour` (0: as planned), verified with the laid material kept. The two courses' centre
+// line y (programmed, before the move) into `ya`, `yb`.
+VerifyRun Verified(const testing::ScratchDir& dir, double move_mm, double& ya, double& yb,
+                   const std::string& scene = "seq_plate", const std::string& ply = "base_0",
+                   std::size_t moved = 0, std::size_t neighbour = 1) {
+  LoadedScene ls = testing::Bundled(scene);
   DiagnosticSink sink;
-  auto plan = planner::PlanPly(*ls.scene, *ls.scene->FindPly("base_0"), {}, sink);
+  auto plan = planner::PlanPly(*ls.scene, *ls.scene->FindPly(ply), {}, sink);
   EXPECT_TRUE(plan && plan->courses.size() >= 2) << testing::AllDiagnostics(sink);
   if (!plan || plan->courses.size() < 2) return {};
-  ya = plan->courses[0].points.front().tool.translation().y();
-  yb = plan->courses[1].points.front().tool.translation().y();
+  ya = plan->courses[moved].points.front().tool.translation().y();
+  yb = plan->courses[neighbour].points.front().tool.translation().y();
   const double dy = ya < yb ? -move_mm : move_mm;  // away from the neighbour
-  for (planner::PlyPoint& p : plan->courses[0].points) p.tool.translation().y() += dy;
+  for (planner::PlyPoint& p : plan->courses[moved].points) p.tool.translation().y() += dy;
   std::ostringstream text;
   planner::WritePlyProgram(*plan, *ls.scene, program::Dialect::Default(), text);
-  const std::string program = dir.File(move_mm != 0 ? "moved.nc" : "planned.nc");
+  const std::string program = dir.File(scene + (move_mm != 0 ? "_moved.nc" : "_planned.nc"));
   std::ofstream(program) << text.str();
   VerifyRunOptions o;
   o.program = program;
-  o.scene = (testing::SourceDir() / "scenes" / "seq_plate.yaml").string();
+  o.scene = (testing::SourceDir() / "scenes" / (scene + ".yaml")).string();
   o.keep_stitch_marks = true;
   VerifyRun run = RunVerification(o, std::move(ls), program::Dialect::Default(), nullptr, sink);
   EXPECT_EQ(run.status, RunStatus::kOk) << testing::AllDiagnostics(sink);
@@ -143,6 +147,68 @@ TEST_F(AfpCoveragePicture, ASeamThinnerThanAPixelIsDrawnEnlarged) {
   EXPECT_GE(last - first + 1, 3);
   EXPECT_LE(last - first + 1, 4);  // enlarged to 3 px, not smeared
   EXPECT_NEAR(0.5 * (first + last), RowOf(pic, SeamV()), 2.0);
+}
+
+// The outer laid tow edge of course `course` (the programme's M71 number) nearest `toward`
+// (v, mm) at the middle station of its middle strip, v in mm, from the laid material (the
+// tows' boundaries the verifier sampled: not what the rules measured).
+double CourseEdgeV(const verify::LaidMaterial& laid, int course, double toward) {
+  std::vector<std::size_t> strips;
+  for (std::size_t i = 0; i < laid.strips.size(); ++i) {
+    if (laid.strips[i].course == course) strips.push_back(i);
+  }
+  EXPECT_FALSE(strips.empty());
+  if (strips.empty()) return NAN;
+  const verify::LaidStrip& s = laid.strips[strips[strips.size() / 2]];
+  const std::size_t st = s.first_station + s.station_count / 2;
+  const int left = std::countr_zero(s.tows), right = 64 - std::countl_zero(s.tows);
+  const double a = laid.BoundaryUv(st, left).y(), b = laid.BoundaryUv(st, right).y();
+  return std::abs(a - toward) < std::abs(b - toward) ? a : b;
+}
+
+// scenes/afp_panel.yaml (a dome): the 1 mm seam is narrower than the afp.coverage map's cells
+// of 1.6 mm, which miss it (0 % bare); afp.gap measures it and the picture draws it red, on
+// the moved course's facing edge as the laid material gives it (rows by the printed ticks),
+// reaching into the seam between the two courses' edges.
+TEST(AfpCoveragePictureDome, ASeamTheCoverageCellsMissIsRedOnTheMovedCoursesEdge) {
+  const testing::ScratchDir dir("afp-coverage-dome");
+  double ya = 0, yb = 0;
+  // Course 2 moved 1 mm away from course 1 (as tests/run/afp_close_up_test.cpp does).
+  const VerifyRun moved = Verified(dir, kMoveMm, ya, yb, "afp_panel", "skin_0", 1, 0);
+  const VerifyRun planned = Verified(dir, 0.0, ya, yb, "afp_panel", "skin_0", 1, 0);
+  ASSERT_TRUE(moved.verifier && planned.verifier);
+  // The coverage map's cells miss the seam: nothing bare (so the red is afp.gap's).
+  int coverage = 0;
+  for (const verify::RuleSummary& r : moved.report.rules) {
+    if (r.id != "afp.coverage") continue;
+    ++coverage;
+    ASSERT_EQ(r.subjects.front().subject, "skin_0 bare");
+    EXPECT_EQ(*r.subjects.front().worst_value, 0.0);
+  }
+  EXPECT_EQ(coverage, 1);
+  const std::vector<CoveragePicture> pics = Pictures(moved), plain = Pictures(planned);
+  ASSERT_EQ(pics.size(), 1U);
+  ASSERT_EQ(plain.size(), 1U);
+  const CoveragePicture& pic = pics.front();
+  const verify::LaidMaterial& laid = moved.verifier->Laid();
+  ASSERT_FALSE(laid.Empty());
+  // Courses 1 and 2 (numbered right to left, course 1 at the lower v): the seam between them.
+  const double v2 = CourseEdgeV(laid, 2, -1e9);  // course 2's edge toward course 1 (lower v)
+  const double v1 = CourseEdgeV(laid, 1, v2);
+  EXPECT_NEAR(std::abs(v2 - v1), kMoveMm, 0.2);  // the seam, 1 mm
+  const double r1 = RowOf(pic, v1), r2 = RowOf(pic, v2);
+  for (std::size_t i = 1; i + 1 < pic.u_ticks.size(); ++i) {
+    SCOPED_TRACE("u = " + std::to_string(pic.u_ticks[i].mm));
+    const int x = pic.u_ticks[i].pixel;
+    const auto [first, last] = RedRun(pic.image, x, 0.5 * (r1 + r2), 20);
+    ASSERT_GE(first, 0);
+    // afp.gap samples the moved course's facing edge (course 2's): the red line lies on it,
+    // 3 px wide, and reaches into the seam between the edges.
+    EXPECT_NEAR(0.5 * (first + last), r2, 2.0);
+    EXPECT_GE(last + 1, std::min(r1, r2));
+    EXPECT_LE(first, std::max(r1, r2));
+    EXPECT_EQ(RedRun(plain.front().image, x, 0.5 * (r1 + r2), 20).first, -1);
+  }
 }
 
 }  // namespace
