@@ -301,7 +301,7 @@ std::vector<uv::LegendRow> LegendOf(bool tow_lines, bool seams) {
       {S::kLine, kOutline, "course outline (outer tow edges)"},
       {S::kThinLine, kTowLine,
        tow_lines ? "tow boundary" : "tow boundaries: tows < 3 px, not drawn"},
-      {S::kArrow, kArrowInk, "fibre direction (3 a course)"},
+      {S::kArrow, kArrowInk, "fibre direction, the way laid (3 a course)"},
       {S::kDisc, kAddMark, "tow added (add point)"},
       {S::kCross, kCutMark, "tow cut (cut point)"},
       {S::kFill, c(CoverageState::kBare), "gap: bare inside the ply"},
