@@ -361,7 +361,8 @@ CoveragePicture Picture(const verify::Verifier& v, const scene::Scene& scene,
   const int legend_w = uv::LegendWidth(font, legend);
   const int panel_w = std::max(legend_w, 420) + 20;  // the scale bar's text needs 420
   img.width = std::max(kCovLeft + f.width + kCovGap + panel_w, 1100);
-  const std::vector<std::string> title = TitleLines(v, scene, cov, facts, fonts, img.width - 40);
+  pic.title = TitleLines(v, scene, cov, facts, fonts, img.width - 40);
+  const std::vector<std::string>& title = pic.title;
   const int title_h = uv::DrawTitleBlock(nullptr, fonts, title, {60, 110, 200});
   const int legend_h = uv::DrawLegendBox(nullptr, font, 0, 0, legend_w, legend);
   f.x0 = kCovLeft;

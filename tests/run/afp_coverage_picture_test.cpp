@@ -149,6 +149,28 @@ TEST_F(AfpCoveragePicture, ASeamThinnerThanAPixelIsDrawnEnlarged) {
   EXPECT_NEAR(0.5 * (first + last), RowOf(pic, SeamV()), 2.0);
 }
 
+// The title: the moved ply fails afp.gap (1 mm > 0.76 mm) on its lines, the planned one passes;
+// courses and tows laid as the plan has them (its courses; a tow piece a segment the plan
+// lays); afp.gap's worst on this ply 1 mm in the moved one (the move, by hand).
+TEST_F(AfpCoveragePicture, TheTitleGivesTheVerdictCoursesTowsAndWorstFigures) {
+  const std::vector<CoveragePicture> moved = Pictures(*moved_), planned = Pictures(*planned_);
+  ASSERT_EQ(moved.size(), 1U);
+  ASSERT_EQ(planned.size(), 1U);
+  ASSERT_GE(moved.front().title.size(), 3U);
+  EXPECT_EQ(moved.front().title[0], "coverage map, ply 1 base_0: FAIL (afp rules on this ply)");
+  EXPECT_EQ(planned.front().title[0], "coverage map, ply 1 base_0: PASS (afp rules on this ply)");
+  LoadedScene ls = testing::Bundled("seq_plate");
+  DiagnosticSink sink;
+  const auto plan = planner::PlanPly(*ls.scene, *ls.scene->FindPly("base_0"), {}, sink);
+  ASSERT_TRUE(plan);
+  EXPECT_EQ(moved.front().title[1], "fibre angle 0 deg · " + std::to_string(plan->courses.size()) +
+                                        " courses · " + std::to_string(plan->tow_segments) +
+                                        " tows laid · (u, v) in mm, one scale on both");
+  std::string figures;
+  for (std::size_t i = 3; i < moved.front().title.size(); ++i) figures += moved.front().title[i];
+  EXPECT_NE(figures.find("gap 1 mm (this ply)"), std::string::npos) << figures;
+}
+
 // The outer laid tow edge of course `course` (the programme's M71 number) nearest `toward`
 // (v, mm) at the middle station of its middle strip, v in mm, from the laid material (the
 // tows' boundaries the verifier sampled: not what the rules measured).

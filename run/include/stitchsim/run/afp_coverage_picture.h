@@ -29,6 +29,9 @@ struct CoveragePicture {
   int ply = 0;       ///< M70 P<n>
   std::string name;  ///< the ply's name (the scene's)
   render::Image image;
+  /// The title block's lines as drawn: the ply and its verdict; its angle, courses and tows
+  /// laid; then the afp rules' worst figures.
+  std::vector<std::string> title;
   std::vector<AxisTick> u_ticks;  ///< the u axis' ticks drawn, left to right
   std::vector<AxisTick> v_ticks;  ///< the v axis' ticks drawn, bottom to top
   double px_per_mm = 0.0;         ///< the map's scale, both axes (the scale bar's)
