@@ -359,15 +359,19 @@ CoveragePicture Picture(const verify::Verifier& v, const scene::Scene& scene,
   pic.px_per_mm = s;
   render::Image& img = pic.image;
   const int legend_w = uv::LegendWidth(font, legend);
-  const int panel_w = std::max(legend_w, 420) + 20;  // the scale bar's text needs 420
-  img.width = std::max(kCovLeft + f.width + kCovGap + panel_w, 1100);
+  const int legend_h = uv::DrawLegendBox(nullptr, font, 0, 0, legend_w, legend);
+  // A map shorter than the legend (a long flat ply): the legend and the scale bar go under it
+  // (the scale bar and its text need 520 px).
+  const bool below = f.height + kCovBottom < legend_h + 60;
+  img.width = below ? std::max({kCovLeft + f.width + kCovGap, legend_w + 3 * kCovGap + 520, 1100})
+                    : std::max(kCovLeft + f.width + 2 * kCovGap + std::max(legend_w, 520), 1100);
   pic.title = TitleLines(v, scene, cov, facts, fonts, img.width - 40);
   const std::vector<std::string>& title = pic.title;
   const int title_h = uv::DrawTitleBlock(nullptr, fonts, title, {60, 110, 200});
-  const int legend_h = uv::DrawLegendBox(nullptr, font, 0, 0, legend_w, legend);
   f.x0 = kCovLeft;
   f.top = title_h + kCovGap;
-  img.height = f.top + std::max(f.height + kCovBottom, legend_h + 60);
+  img.height = below ? f.top + f.height + kCovBottom + legend_h + 20
+                     : f.top + std::max(f.height + kCovBottom, legend_h + 60);
   img.rgb.assign(static_cast<std::size_t>(img.width) * img.height * 3, 255);
   const std::vector<CoverageState> px = Resample(cov, f);
   for (int y = 0; y < f.height; ++y) {
@@ -402,9 +406,12 @@ CoveragePicture Picture(const verify::Verifier& v, const scene::Scene& scene,
   const uv::AxisTicks ticks = uv::DrawAxes(img, font, f, 8);
   pic.u_ticks = ticks.u;
   pic.v_ticks = ticks.v;
-  const int panel_x = f.x0 + f.width + kCovGap;
-  uv::DrawLegendBox(&img, font, panel_x, f.top, legend_w, legend);
-  pic.scale_bar_mm = uv::DrawScaleBar(img, font, panel_x, f.top + legend_h + 40, s, 160);
+  const int panel_x = below ? kCovGap : f.x0 + f.width + kCovGap;
+  const int panel_y = below ? f.top + f.height + kCovBottom : f.top;
+  uv::DrawLegendBox(&img, font, panel_x, panel_y, legend_w, legend);
+  pic.scale_bar_mm =
+      below ? uv::DrawScaleBar(img, font, panel_x + legend_w + kCovGap, panel_y + 30, s, 160)
+            : uv::DrawScaleBar(img, font, panel_x, panel_y + legend_h + 40, s, 160);
   return pic;
 }
 
