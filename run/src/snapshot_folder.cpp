@@ -271,7 +271,8 @@ Status WriteSnapshotFolder(const SnapshotInputs& in, const std::string& folder,
       !render::OpenSnapshotFonts(kCloseUpWidth, close_fonts, error)) {
     return Status::Error("io-missing-file", "snapshots: " + error);
   }
-  if (Status st = WriteAfpCoverageSnapshots(*in.verifier, folder); !st.ok) return st;
+  if (Status st = WriteAfpCoverageSnapshots(*in.verifier, *in.scene->scene, folder); !st.ok)
+    return st;
   if (Status st = WriteAfpLaminateSnapshots(*in.verifier, folder); !st.ok) return st;
   if (Status st = WriteOverview(in, overview_fonts, dir, sink); !st.ok) return st;
   nlohmann::json manifest;

@@ -33,9 +33,11 @@ struct SnapshotInputs {
 /// Status's code and message.
 Status WriteSnapshotFolder(const SnapshotInputs& in, const std::string& dir, DiagnosticSink& sink);
 
-/// Writes coverage_ply<n>.png into `dir` for each ply afp.coverage measured; io-write when a
-/// file cannot be written.
-Status WriteAfpCoverageSnapshots(const verify::Verifier& verifier, const std::string& dir);
+/// Writes coverage_ply<n>.png into `dir` for each ply afp.coverage measured (AfpCoveragePictures,
+/// afp_coverage_picture.h; `scene`: the run's); io-write when a file cannot be written,
+/// io-missing-file without the fonts.
+Status WriteAfpCoverageSnapshots(const verify::Verifier& verifier, const scene::Scene& scene,
+                                 const std::string& dir);
 
 /// Writes laminate_thickness.png and laminate_fiber_angle.png into `dir`: the stack thickness
 /// and the worst fibre-angle deviation the programme's plies laid, over (u, v) (verify::
