@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 
 #include "stitchsim/run/laid_ribbons.h"
@@ -21,11 +22,12 @@ std::pair<int, int> LaidSpan(std::uint64_t mask, int first, int last) {
   return {a, b};
 }
 
-// Ribbon segments of every line with tows merged `k` at a time, all stations drawn.
-std::size_t SegmentsAt(const verify::LaidMaterial& laid, int k) {
+// Ribbon segments of every line (but those of the plies in `hidden`) with tows merged `k` at a
+// time, all stations drawn.
+std::size_t SegmentsAt(const verify::LaidMaterial& laid, int k, const std::set<int>& hidden) {
   std::size_t n = 0;
   for (const verify::LaidStrip& s : laid.strips) {
-    if (s.station_count < 2) continue;
+    if (s.station_count < 2 || hidden.count(s.ply) != 0) continue;
     for (int first = 1; first <= laid.tows; first += k) {
       if (LaidSpan(s.tows, first, std::min(laid.tows, first + k - 1)).first > 0) {
         n += s.station_count - 1;
@@ -66,15 +68,25 @@ std::array<float, 4> PlyColour(int ply) {
 LaidRibbons MakeLaidRibbons(const verify::LaidMaterial& laid, std::size_t budget, double base_mm) {
   LaidRibbons out;
   if (laid.strips.empty() || laid.tows <= 0) return out;
+  std::map<int, std::size_t> ply_order;  // ply -> order of first appearance
+  std::vector<int> stack;                // the plies in that order
+  for (const verify::LaidStrip& s : laid.strips) {
+    if (ply_order.emplace(s.ply, ply_order.size()).second) stack.push_back(s.ply);
+  }
+  std::set<int> hidden;
   int k = 1;
-  while (k < laid.tows && SegmentsAt(laid, k) > budget) k *= 2;
+  while (k < laid.tows && SegmentsAt(laid, k, hidden) > budget) k *= 2;
   k = std::min(k, laid.tows);
   out.tows_per_ribbon = k;
-  const std::size_t at_k = SegmentsAt(laid, k);
+  // Still over: the lowest plies, under the later ones, are left out before any station is
+  // (a ribbon thinned along a curved part cuts chords through the plies round it).
+  for (std::size_t i = 0; i + 1 < stack.size() && SegmentsAt(laid, k, hidden) > budget; ++i) {
+    hidden.insert(stack[i]);
+    out.hidden_plies.push_back(stack[i]);
+  }
+  const std::size_t at_k = SegmentsAt(laid, k, hidden);
   out.station_step =
       at_k > budget ? static_cast<int>((at_k + budget - 1) / std::max<std::size_t>(1, budget)) : 1;
-  std::map<int, std::size_t> ply_order;  // ply -> order of first appearance
-  for (const verify::LaidStrip& s : laid.strips) ply_order.emplace(s.ply, ply_order.size());
   // One ribbon per run of lines of a course that join (a line starting on the station the
   // previous one ended on) with the same laid span in the group; every station_step-th
   // station of the run drawn, and its last.
@@ -94,6 +106,7 @@ LaidRibbons MakeLaidRibbons(const verify::LaidMaterial& laid, std::size_t budget
                        prev->station_count > 0 &&
                        s.first_station == prev->first_station + prev->station_count - 1;
     prev = &s;
+    if (hidden.count(s.ply) != 0) continue;
     const double lift =
         base_mm + kRibbonLiftMm + kRibbonPlyStepMm * static_cast<double>(ply_order[s.ply]);
     for (std::size_t g = 0; g < groups; ++g) {
@@ -129,11 +142,25 @@ LaidRibbons MakeLaidRibbons(const verify::LaidMaterial& laid, std::size_t budget
     }
   }
   for (RibbonRun& r : runs) close(r);
-  for (const auto& [ply, order] : ply_order) {
-    if (order >= kMaxPlyEntries) continue;
-    out.legend.push_back({render::ToRgb(PlyColour(ply)), "ply " + std::to_string(ply)});
+  // The drawn plies, the top ones first.
+  std::size_t listed = 0;
+  for (auto ply = stack.rbegin(); ply != stack.rend(); ++ply) {
+    if (hidden.count(*ply) != 0) continue;
+    if (listed++ == kMaxPlyEntries) {
+      out.legend.push_back({{0, 0, 0}, "..."});
+      break;
+    }
+    out.legend.push_back({render::ToRgb(PlyColour(*ply)), "ply " + std::to_string(*ply)});
   }
-  if (ply_order.size() > kMaxPlyEntries) out.legend.push_back({{0, 0, 0}, "..."});
+  if (!out.hidden_plies.empty()) {
+    const std::size_t n = out.hidden_plies.size();
+    out.legend.push_back(
+        {{0, 0, 0},
+         (n == 1 ? "ply " + std::to_string(out.hidden_plies.front())
+                 : std::to_string(n) + " plies (" + std::to_string(out.hidden_plies.front()) +
+                       " to " + std::to_string(out.hidden_plies.back()) + ")") +
+             " under these: not drawn"});
+  }
   return out;
 }
 

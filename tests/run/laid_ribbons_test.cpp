@@ -109,7 +109,7 @@ TEST(LaidRibbons, JoinedLinesOfACourseMakeOneRibbonUntilTheSpanChanges) {
   EXPECT_EQ(r.segments, 4U + 2U);
 }
 
-TEST(LaidRibbons, APlyAboveIsLiftedHigherAndTheLegendStopsAtTwelvePlies) {
+TEST(LaidRibbons, APlyAboveIsLiftedHigherAndTheLegendListsEightPliesFromTheTop) {
   verify::LaidMaterial m = Empty();
   for (int ply = 1; ply <= 13; ++ply) AddStrip(m, ply, 0x1, 2);
   // A station off the surface (NaN) leaves no ribbon point.
@@ -119,10 +119,37 @@ TEST(LaidRibbons, APlyAboveIsLiftedHigherAndTheLegendStopsAtTwelvePlies) {
   ASSERT_EQ(r.sets.size(), 13U);  // ply 1's strip has one point left: no ribbon
   EXPECT_EQ(r.sets.front().label, "afp_ply_2");
   EXPECT_NEAR(r.sets.front().points_part_mm.front().z(), kRibbonLiftMm + kRibbonPlyStepMm, 1e-6);
-  ASSERT_EQ(r.legend.size(), 13U);
-  EXPECT_EQ(r.legend[11].label, "ply 12");
+  ASSERT_EQ(r.legend.size(), 9U);
+  EXPECT_EQ(r.legend[0].label, "ply 13");
+  EXPECT_EQ(r.legend[7].label, "ply 6");
   EXPECT_EQ(r.legend.back().label, "...");
+  EXPECT_TRUE(r.hidden_plies.empty());
   EXPECT_NE(PlyColour(1), PlyColour(2));
+}
+
+// Past the budget with one ribbon a line, the lowest plies go before any station does: three
+// plies of one 5-station line (4 segments each, 12 in all); a budget of 8 leaves ply 1 out
+// and draws every station; a budget of 3 leaves plies 1 and 2 out and draws ply 3's every
+// 2nd station; the top ply is always drawn.
+TEST(LaidRibbons, TheLowestPliesAreLeftOutBeforeStations) {
+  verify::LaidMaterial m = Empty();
+  for (int ply = 1; ply <= 3; ++ply) AddStrip(m, ply, 0xFFFF, 5);
+  const LaidRibbons eight = MakeLaidRibbons(m, 8);
+  EXPECT_EQ(eight.tows_per_ribbon, 16);
+  EXPECT_EQ(eight.hidden_plies, std::vector<int>{1});
+  EXPECT_EQ(eight.station_step, 1);
+  EXPECT_EQ(eight.segments, 8U);
+  ASSERT_EQ(eight.legend.size(), 3U);
+  EXPECT_EQ(eight.legend[0].label, "ply 3");
+  EXPECT_EQ(eight.legend[1].label, "ply 2");
+  EXPECT_EQ(eight.legend[2].label, "ply 1 under these: not drawn");
+  for (const auto& set : eight.sets) EXPECT_NE(set.label, "afp_ply_1");
+  const LaidRibbons three = MakeLaidRibbons(m, 3);
+  EXPECT_EQ(three.hidden_plies, (std::vector<int>{1, 2}));
+  EXPECT_EQ(three.station_step, 2);
+  ASSERT_EQ(three.sets.size(), 1U);
+  EXPECT_EQ(three.sets.front().label, "afp_ply_3");
+  EXPECT_EQ(three.legend.back().label, "2 plies (1 to 2) under these: not drawn");
 }
 
 }  // namespace

@@ -82,10 +82,15 @@ Eigen::Vector2d UvFrame::ToPixel(const Eigen::Vector2d& uv) const {
 
 namespace {
 
-// Ticks at multiples of NiceStep within [lo, hi]; `place(value)` gives the pixel.
+// Ticks at multiples of NiceStep within [lo, hi], at least two (a finer step where `count`
+// would leave one: a scale needs two marks); `place(value)` gives the pixel.
 template <typename PlaceFn>
 void EachTick(double lo, double hi, int count, PlaceFn&& place) {
-  const double step = NiceStep(hi - lo, count);
+  double step = NiceStep(hi - lo, count);
+  for (int more = count + 1; more <= count + 8; ++more) {
+    if (std::floor(hi / step + 1e-9) - std::ceil(lo / step - 1e-9) >= 1.0) break;
+    step = NiceStep(hi - lo, more);
+  }
   for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step; v += step) place(v);
 }
 
