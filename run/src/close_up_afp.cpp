@@ -117,13 +117,15 @@ struct AfpFrame {
 
 // Adds the polyline `points` (part frame, mm; lifted by `lift_mm`) as a subject overlay.
 void AddSubjectLine(const AfpFrame& f, const std::vector<Eigen::Vector3d>& points, double lift_mm,
-                    const Rgba& colour, double radius_mm, ShotSubject& subject, CloseUpPlan& plan) {
+                    const Rgba& colour, double radius_mm, ShotSubject& subject, CloseUpPlan& plan,
+                    bool polyline = true) {
   std::vector<Eigen::Vector3d> world;
   for (const Eigen::Vector3d& p : points) {
     world.push_back(LiftedWorld(*f.surface, f.part, p, lift_mm));
   }
   const std::string label = "afp_subject_" + std::to_string(plan.overlays.size());
-  plan.overlays.push_back(MakeOverlay(label, colour, radius_mm / 1000.0, world, world.size() > 1));
+  plan.overlays.push_back(
+      MakeOverlay(label, colour, radius_mm / 1000.0, world, polyline && world.size() > 1));
   subject.overlays.push_back(label);
 }
 
@@ -225,10 +227,10 @@ bool AddSpanSubject(const CloseUpContext& ctx, const AfpFrame& f, const AfpLook&
   }
   plan.legend.push_back({render::ToRgb(look.colour),
                          std::string(look.what) + " " + Fmt("%.4g", focus.value) + " mm (limit " +
-                             Fmt("%.4g", focus.limit) + " mm), " + focus.subject +
-                             (laid_between ? ": its centre line from its add to its cut (dots)"
-                                           : ": from its cut to its re-add (dots), not laid "
-                                             "between")});
+                             Fmt("%.4g", focus.limit) + " mm), " + focus.subject});
+  plan.legend.push_back(
+      {render::ToRgb(kAfpArc), laid_between ? "its add and its cut (dots), laid between"
+                                            : "its cut and its re-add (dots), bare between"});
   plan.centre_m = LiftedWorld(*f.surface, f.part, mid, 0.0);
   plan.radius_m = std::max(plan.radius_m, (reach + 8.0) / 1000.0);
   return true;
@@ -248,17 +250,17 @@ bool AddSteeringSubject(const CloseUpContext& ctx, const AfpFrame& f, const AfpL
   for (const auto& line : TowCentreLines(laid, tow, w[1], reach)) {
     AddSubjectLine(f, line, f.base_mm + half, look.colour, half, subject, plan);
   }
-  AddSubjectLine(f, ArcThrough(w[0], w[1], w[2], 32), f.base_mm + 2.0 * half + 0.3, kAfpArc, 0.3,
+  AddSubjectLine(f, ArcThrough(w[0], w[1], w[2], 32), f.base_mm + 2.0 * half + 0.2, kAfpArc, 0.2,
                  subject, plan);
-  AddSubjectLine(f, w, f.base_mm + 2.0 * half + 0.6, kAfpArc, 0.9, subject, plan);
+  AddSubjectLine(f, w, f.base_mm + 2.0 * half + 0.8, kAfpArc, 0.8, subject, plan, false);
   plan.legend.push_back({render::ToRgb(look.colour), "steering radius " + Fmt("%.4g", focus.value) +
                                                          " mm (limit " + Fmt("%.4g", focus.limit) +
-                                                         " mm), " + focus.subject +
-                                                         ": its centre line"});
-  plan.legend.push_back(
-      {render::ToRgb(kAfpArc), "the circle through its centres " +
-                                   Fmt("%.3g", (w[1] - w[0]).norm()) + " mm before and " +
-                                   Fmt("%.3g", (w[2] - w[1]).norm()) + " mm after (dots)"});
+                                                         " mm), " + focus.subject});
+  plan.legend.push_back({render::ToRgb(look.colour), "its centre line over the measured window"});
+  plan.legend.push_back({render::ToRgb(kAfpArc), "the circle through 3 of its centres (dots), " +
+                                                     Fmt("%.3g", (w[1] - w[0]).norm()) + " / " +
+                                                     Fmt("%.3g", (w[2] - w[1]).norm()) +
+                                                     " mm apart"});
   plan.radius_m = std::max(plan.radius_m, (reach + 5.0) / 1000.0);
   return true;
 }
@@ -286,17 +288,19 @@ bool AddRollerSubject(const CloseUpContext& ctx, const AfpFrame& f, const AfpLoo
   plan.overlays.push_back(MakeOverlay(foot, kAfpFoot, 0.0004, raised(k1, 0.4), true));
   subject.overlays.insert(subject.overlays.end(), {roller, foot});
   const std::string unit = focus.unit.empty() ? "" : " " + focus.unit;
-  plan.legend.push_back({render::ToRgb(look.colour), "roller across the tows, " + focus.subject +
-                                                         " " + Fmt("%.4g", focus.value) + unit +
-                                                         " of its limit (limit " +
-                                                         Fmt("%.4g", focus.limit) + unit + ")"});
-  plan.legend.push_back({render::ToRgb(look.colour), focus.message});
-  plan.legend.push_back({render::ToRgb(kAfpFoot),
-                         "its foot on the laid surface (roller drawn 2 mm thick on its height)"});
+  plan.legend.push_back(
+      {render::ToRgb(look.colour), "roller: " + focus.subject + " " + Fmt("%.4g", focus.value) +
+                                       unit + " (limit " + Fmt("%.4g", focus.limit) + unit + ")"});
+  // Its height over its foot at the middle (the tool point), as drawn.
+  const double over = (r[k1 / 2] - r[k1 + k1 / 2]).norm();
+  plan.legend.push_back({render::ToRgb(look.colour),
+                         "roller " + Fmt("%.3g", over) + " mm over its foot at the tool point"});
+  plan.legend.push_back({render::ToRgb(kAfpFoot), "its foot on the laid surface"});
   const Eigen::Vector3d across = f.part.linear() * (r[k1 - 1] - r[0]).normalized();
   const Eigen::Vector3d travel = f.n.cross(across);
   plan.radius_m = std::max(plan.radius_m, (0.5 * (r[k1 - 1] - r[0]).norm() + 8.0) / 1000.0);
-  plan.directions = {-f.n + 0.8 * travel, -f.n - 0.8 * travel, -f.n + 0.4 * travel, -f.n};
+  plan.directions = {-0.4 * f.n + travel, -0.4 * f.n - travel, -f.n + 0.8 * travel,
+                     -f.n - 0.8 * travel, -f.n};
   return true;
 }
 
