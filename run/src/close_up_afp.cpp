@@ -43,6 +43,7 @@ AfpLook LookOf(const std::string& id) {
   if (id == "afp.overlap") return {"afp_overlap", kAfpOverlap, "overlap"};
   if (id == "afp.steering_radius") return {"afp_steering", kAfpSteered, "steering radius"};
   if (id == "afp.compaction") return {"afp_roller", kAfpRoller, "roller"};
+  if (id == "afp.fiber_angle") return {"afp_fiber", kAfpSteered, "fibre angle"};
   if (id == "afp.min_tow_length") return {"afp_short_piece", kAfpSteered, "short tow piece"};
   if (id == "afp.restart_distance") return {"afp_restart", kAfpSteered, "restart"};
   return {"", kAfpOther, "finding"};
@@ -236,6 +237,38 @@ bool AddSpanSubject(const CloseUpContext& ctx, const AfpFrame& f, const AfpLook&
   return true;
 }
 
+// An arrow on the surface from `tail` to `tip` (part mm) with a head 3 mm long: a polyline.
+std::vector<Eigen::Vector3d> Arrow(const geom::Surface& surface, const Eigen::Vector3d& tail,
+                                   const Eigen::Vector3d& tip) {
+  const Eigen::Vector3d dir = (tip - tail).normalized();
+  const Eigen::Vector3d side = surface.Project(tip).normal.cross(dir);
+  const Eigen::Vector3d back = tip - 3.0 * dir;
+  return {tail, tip, back + 1.5 * side, tip, back - 1.5 * side};
+}
+
+// afp.fiber_angle: the tow's centre line where it deviates most (half a tow wide), the laid
+// direction (amber arrow) and the ply's design direction (dark arrow) from that point.
+bool AddFibreSubject(const CloseUpContext& ctx, const AfpFrame& f, const AfpLook& look,
+                     const verify::Finding& focus, ShotSubject& subject, CloseUpPlan& plan) {
+  const std::vector<Eigen::Vector3d> d = DrawnNear(ctx.verifier, look.drawn, f.at, kAfpHalfFrameMm);
+  if (d.size() != 3 || ctx.verifier == nullptr) return false;
+  const double half = 0.25 * ctx.verifier->Laid().tow_width_mm;
+  for (const auto& line : TowCentreLines(ctx.verifier->Laid(), TowOf(focus), d[0], 24.0)) {
+    AddSubjectLine(f, line, f.base_mm + half, look.colour, half, subject, plan);
+  }
+  // Both from the point, 2.2 times as long as drawn: a wedge as wide as the angle.
+  for (const auto& [tip, colour] : {std::pair{d[1], kAfpOverlap}, std::pair{d[2], kAfpArc}}) {
+    AddSubjectLine(f, Arrow(*f.surface, d[0], d[0] + 2.2 * (tip - d[0])),
+                   f.base_mm + 2.0 * half + 0.4, colour, 0.4, subject, plan);
+  }
+  plan.legend.push_back({render::ToRgb(look.colour), "fibre angle " + Fmt("%.3g", focus.value) +
+                                                         " deg (limit " + Fmt("%.3g", focus.limit) +
+                                                         " deg), " + focus.subject});
+  plan.legend.push_back({render::ToRgb(kAfpOverlap), "the direction it is laid in"});
+  plan.legend.push_back({render::ToRgb(kAfpArc), "the ply's design fibre direction"});
+  return true;
+}
+
 // afp.steering_radius: the steered tow's centre line over the measured window (a quarter tow
 // wide each side) and the circle through the window's three centres (thin, dark), with them.
 bool AddSteeringSubject(const CloseUpContext& ctx, const AfpFrame& f, const AfpLook& look,
@@ -334,6 +367,7 @@ bool PlanAfp(const CloseUpContext& ctx, const verify::Rule& rule, const verify::
   const bool drawn =
       (id == "afp.steering_radius" && AddSteeringSubject(ctx, f, look, focus, subject, plan)) ||
       (id == "afp.compaction" && AddRollerSubject(ctx, f, look, focus, subject, plan)) ||
+      (id == "afp.fiber_angle" && AddFibreSubject(ctx, f, look, focus, subject, plan)) ||
       (id == "afp.min_tow_length" && AddSpanSubject(ctx, f, look, focus, true, subject, plan)) ||
       (id == "afp.restart_distance" && AddSpanSubject(ctx, f, look, focus, false, subject, plan));
   if (!drawn) AddSeamSubject(ctx, f, look, focus, subject, plan);

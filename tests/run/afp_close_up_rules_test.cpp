@@ -19,6 +19,7 @@
 #include <map>
 
 #include "afp_close_up_support.h"
+#include "stitchsim/common/units.h"
 
 namespace stitchsim::run {
 namespace {
@@ -83,7 +84,7 @@ struct Planted {
   double xc = 0.0;                                  // the bump's centre x
   double course1_y = 0.0;                           // course 1's programmed y
   int add_line = 0, cut_line = 0, re_add_line = 0;  // course 3: tow kCutTow's G1 lines
-  CoursePoints course3;
+  CoursePoints course2, course3;                    // as verified
 };
 
 // The G1 line before the M62 P<tow> in course 3 of `text` (the point the tow is added at).
@@ -117,6 +118,7 @@ class AfpRuleCloseUps : public ::testing::Test {
       if (xyz.x() >= kLiftFromX && xyz.x() <= kLiftToX) xyz.z() += kLiftMm;
       return std::string();
     });
+    p_->course2 = PointsOf(edited, 2);
     const CoursePoints c3 = PointsOf(edited, 3);
     const int cut = NearestLine(c3, kCutX), re_add = NearestLine(c3, kReAddX);
     edited = testing::EditCourse(edited, 3, [&](int number, Eigen::Vector3d&) {
@@ -174,6 +176,35 @@ TEST_F(AfpRuleCloseUps, TheSteeredTowTurnsOnTheBumpsRadiusWhereItWasBent) {
   EXPECT_NEAR((w[2] - w[1]).norm(), 27.5, 2.6);
 }
 
+// The bent course's tows turn off the ply's 0 deg (x) most on the programme's steepest chord,
+// where the middle arc meets an outer one (|x - xc| = kArcMm: at most asin(kArcMm / kBendMm),
+// 7.2 deg).
+TEST_F(AfpRuleCloseUps, TheBentCourseIsFoundOffItsFibreDirectionOnItsSteepestChord) {
+  const verify::Finding* f = Focus("afp.fiber_angle");
+  ASSERT_NE(f, nullptr);
+  double steepest = 0.0;  // the programme's chords of course 2, in x-y (the dome's slope aside)
+  for (auto it = p_->course2.begin(); std::next(it) != p_->course2.end(); ++it) {
+    const Eigen::Vector3d d = std::next(it)->second - it->second;
+    if (std::abs(d.x()) > 1.0) steepest = std::max(steepest, std::atan(std::abs(d.y() / d.x())));
+  }
+  // The executor moves straight between programme points 5 mm apart: the steepest chord turns
+  // less than the arcs' tangent there by up to half a chord's turn, 2.5 / kBendMm rad.
+  EXPECT_LE(steepest, std::asin(kArcMm / kBendMm));
+  EXPECT_GE(steepest, std::asin(kArcMm / kBendMm) - 2.6 / kBendMm);
+  EXPECT_NEAR(f->value, steepest * kRadToDeg, 0.15) << f->message;
+  const Eigen::Vector3d at = At(*f);
+  EXPECT_NEAR(std::abs(at.x() - p_->xc), kArcMm, 5.0) << at.transpose();
+  const int tow = std::stoi(f->subject.substr(4));
+  EXPECT_NEAR(std::abs(at.y() - Bump(at.x() - p_->xc)), std::abs(tow - 8.5) * kTowMm, 0.5);
+  // The drawing: the point, then the laid and the design directions' tips 10 mm from it, as
+  // far apart as the angle.
+  const auto d = DrawnBy(*p_->run, "afp.fiber_angle", "afp_fiber");
+  ASSERT_EQ(d.size(), 3U);
+  EXPECT_LT((d[0] - at).norm(), 1e-9);
+  EXPECT_NEAR(std::acos((d[1] - d[0]).normalized().dot((d[2] - d[0]).normalized())) * kRadToDeg,
+              f->value, 1e-6);
+}
+
 TEST_F(AfpRuleCloseUps, TheRollerIsFoundLiftedWhereCourse1WasRaised) {
   const verify::Finding* f = Focus("afp.compaction");
   ASSERT_NE(f, nullptr);
@@ -227,6 +258,10 @@ TEST_F(AfpRuleCloseUps, TheSteeredTowIsSeenAndNotHidden) {
 
 TEST_F(AfpRuleCloseUps, TheRollerIsSeenAndNotHidden) {
   testing::ExpectSubjectSeen(*p_->run, "afp.compaction", kOnePercent);
+}
+
+TEST_F(AfpRuleCloseUps, TheFibreDirectionsAreSeenAndNotHidden) {
+  testing::ExpectSubjectSeen(*p_->run, "afp.fiber_angle", kOnePercent);
 }
 
 TEST_F(AfpRuleCloseUps, TheShortPieceIsSeenAndNotHidden) {
