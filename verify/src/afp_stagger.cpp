@@ -71,11 +71,12 @@ class StaggerGrid {
 
 /// A seam point too near another ply's seam, waiting for the end of the comparisons.
 struct StaggerNear {
-  double value = 0.0;   ///< mm
-  int ply = 0;          ///< the ply whose seam point it is
-  int below = 0;        ///< the ply whose seam it is near
-  int other_line = 0;   ///< the line that laid that seam
-  double offset = 0.0;  ///< the laminate's stagger offset, mm
+  double value = 0.0;                            ///< mm
+  int ply = 0;                                   ///< the ply whose seam point it is
+  int below = 0;                                 ///< the ply whose seam it is near
+  int other_line = 0;                            ///< the line that laid that seam
+  double offset = 0.0;                           ///< the laminate's stagger offset, mm
+  Eigen::Vector3d at = Eigen::Vector3d::Zero();  ///< the seam point, part frame, mm
 };
 
 /// A piece of seam: two consecutive points of a course edge that is a seam.
@@ -159,7 +160,7 @@ class StaggerRule final : public Rule {
                     "of %.4g mm",
                     s.ply, s.value, s.below, s.other_line, s.offset);
       Record(FindingSeverity::kError, s.value, s.offset, line, 0, "ply " + std::to_string(s.ply),
-             buf, nullptr);
+             buf, nullptr, &s.at);
     }
   }
 
@@ -235,6 +236,7 @@ class StaggerRule final : public Rule {
         StaggerNear t = pair;
         t.value = best;
         t.other_line = best_line;
+        t.at = s.b;
         near[s.line] = t;
       }
     }
