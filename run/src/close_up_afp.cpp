@@ -46,6 +46,7 @@ AfpLook LookOf(const std::string& id) {
   if (id == "afp.fiber_angle") return {"afp_fiber", kAfpSteered, "fibre angle"};
   if (id == "afp.min_tow_length") return {"afp_short_piece", kAfpSteered, "short tow piece"};
   if (id == "afp.restart_distance") return {"afp_restart", kAfpSteered, "restart"};
+  if (id == "afp.stagger") return {"afp_stagger", kAfpSteered, "seams"};
   return {"", kAfpOther, "finding"};
 }
 
@@ -200,15 +201,18 @@ int TowOf(const verify::Finding& focus) {
   return focus.subject.rfind("tow ", 0) == 0 ? std::atoi(focus.subject.c_str() + 4) : 0;
 }
 
-// afp.min_tow_length / afp.restart_distance: the two points of the tow the rule names (the
-// piece's add and cut; the cut and the re-add) as dark dots and the stretch between them:
-// the tow's laid centre line (`laid_between`), else the straight line across the bare stretch.
+// afp.min_tow_length / afp.restart_distance / afp.stagger: the two points the rule names (the
+// piece's add and cut; the tow's cut and re-add; the two plies' seam points) as dark dots and
+// the stretch between them: the tow's laid centre line (`laid_between`), else the straight
+// line; both thinner where the points are under 20 mm apart. `dots` says what the dots are.
 bool AddSpanSubject(const CloseUpContext& ctx, const AfpFrame& f, const AfpLook& look,
-                    const verify::Finding& focus, bool laid_between, ShotSubject& subject,
-                    CloseUpPlan& plan) {
+                    const verify::Finding& focus, bool laid_between, const char* dots,
+                    ShotSubject& subject, CloseUpPlan& plan) {
   const std::vector<Eigen::Vector3d> e = DrawnNear(ctx.verifier, look.drawn, f.at, 1000.0);
   if (e.size() != 2 || ctx.verifier == nullptr) return false;
-  const double half = 0.25 * ctx.verifier->Laid().tow_width_mm;
+  const double size = std::clamp((e[1] - e[0]).norm() / 20.0, 0.5, 1.0);
+  const double half = 0.25 * ctx.verifier->Laid().tow_width_mm * (size < 1.0 ? 0.4 * size : 1.0);
+  const double dot = 0.75 * 0.25 * ctx.verifier->Laid().tow_width_mm * size;
   const Eigen::Vector3d mid = 0.5 * (e[0] + e[1]);
   const double reach = 0.5 * (e[1] - e[0]).norm() + 0.5;
   bool drawn = false;
@@ -224,16 +228,14 @@ bool AddSpanSubject(const CloseUpContext& ctx, const AfpFrame& f, const AfpLook&
     AddSubjectLine(f, stretch, f.base_mm + half, look.colour, half, subject, plan);
   }
   for (const Eigen::Vector3d& p : e) {
-    AddSubjectLine(f, {p}, f.base_mm + 2.0 * half + 1.0, kAfpArc, 1.2, subject, plan);
+    AddSubjectLine(f, {p}, f.base_mm + 2.0 * half + dot, kAfpArc, dot, subject, plan);
   }
   plan.legend.push_back({render::ToRgb(look.colour),
                          std::string(look.what) + " " + Fmt("%.4g", focus.value) + " mm (limit " +
                              Fmt("%.4g", focus.limit) + " mm), " + focus.subject});
-  plan.legend.push_back(
-      {render::ToRgb(kAfpArc), laid_between ? "its add and its cut (dots), laid between"
-                                            : "its cut and its re-add (dots), bare between"});
+  plan.legend.push_back({render::ToRgb(kAfpArc), dots});
   plan.centre_m = LiftedWorld(*f.surface, f.part, mid, 0.0);
-  plan.radius_m = std::max(plan.radius_m, (reach + 8.0) / 1000.0);
+  plan.radius_m = std::max(reach + 8.0, 10.0) / 1000.0;  // both points and 8 mm round them
   return true;
 }
 
@@ -368,8 +370,15 @@ bool PlanAfp(const CloseUpContext& ctx, const verify::Rule& rule, const verify::
       (id == "afp.steering_radius" && AddSteeringSubject(ctx, f, look, focus, subject, plan)) ||
       (id == "afp.compaction" && AddRollerSubject(ctx, f, look, focus, subject, plan)) ||
       (id == "afp.fiber_angle" && AddFibreSubject(ctx, f, look, focus, subject, plan)) ||
-      (id == "afp.min_tow_length" && AddSpanSubject(ctx, f, look, focus, true, subject, plan)) ||
-      (id == "afp.restart_distance" && AddSpanSubject(ctx, f, look, focus, false, subject, plan));
+      (id == "afp.min_tow_length" &&
+       AddSpanSubject(ctx, f, look, focus, true, "its add and its cut (dots), laid between",
+                      subject, plan)) ||
+      (id == "afp.restart_distance" &&
+       AddSpanSubject(ctx, f, look, focus, false, "its cut and its re-add (dots), bare between",
+                      subject, plan)) ||
+      (id == "afp.stagger" &&
+       AddSpanSubject(ctx, f, look, focus, false, "its seam and the nearest of a ply below (dots)",
+                      subject, plan));
   if (!drawn) AddSeamSubject(ctx, f, look, focus, subject, plan);
   plan.subjects.push_back(subject);
   // The laid material around it: each line's tow boundaries near the finding (course edges

@@ -15,6 +15,7 @@
 // close-up's subject covers a set share of the picture and nothing hides it.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -270,6 +271,77 @@ TEST_F(AfpRuleCloseUps, TheShortPieceIsSeenAndNotHidden) {
 
 TEST_F(AfpRuleCloseUps, TheRestartIsSeenAndNotHidden) {
   testing::ExpectSubjectSeen(*p_->run, "afp.restart_distance", kOnePercent);
+}
+
+// afp.stagger: afp_panel with a laminate of skin_0 and an inline 0 deg ply on it (ply 3, the
+// same boundary), stagger offset 10 mm over one ply; the programme lays skin_0, then again as
+// ply 3 with every course kStaggerMm aside (+y): each seam of ply 3 lies kStaggerMm from
+// skin_0's. Second route: the seams from the programme's course centre lines (midway between
+// courses 1 and 2; course 2's edge half a head from its centre line), moved kStaggerMm.
+constexpr double kStaggerMm = 2.0;
+
+class AfpStaggerCloseUp : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    const std::string text = testing::PanelSkin0Text();
+    ASSERT_FALSE(text.empty());
+    std::ifstream in(testing::SourceDir() / "scenes" / "afp_panel.yaml");
+    std::stringstream scene;
+    scene
+        << in.rdbuf()
+        << "laminates:\n  - name: skin\n    rosette: {origin: [0, 0, 100], direction: [1, 0, 0]}\n"
+           "    stagger: {offset: 10, plies_before_repeat: 1}\n    stack:\n      - skin_0\n"
+           "      - {angle_deg: 0, boundary_uv: [[130, 120], [475, 120], [475, 285], [130, "
+           "285]]}\n";
+    const std::string scene_file = dir_->File("afp_panel_laminate.yaml");
+    std::ofstream(scene_file) << scene.str();
+    // Ply 3 (the inline ply): skin_0's courses moved kStaggerMm aside, after skin_0's M72.
+    std::string upper = text.substr(text.find("M70 P1"));
+    upper.replace(0, 6, "M70 P3");
+    for (int c = 1; c <= 3; ++c) {
+      upper = testing::EditCourse(upper, c, [](int, Eigen::Vector3d& xyz) {
+        xyz.y() += kStaggerMm;
+        return std::string();
+      });
+    }
+    const CoursePoints c1 = PointsOf(text, 1), c2 = PointsOf(text, 2);
+    seams_ = {0.5 * (c1.begin()->second.y() + c2.begin()->second.y()) + kStaggerMm,
+              c2.begin()->second.y() + 8 * kTowMm + kStaggerMm};
+    run_ = testing::VerifyPanelText(text.substr(0, text.rfind("M30")) + upper, *dir_, "laminate.nc",
+                                    scene_file)
+               .release();
+    ASSERT_NE(run_, nullptr);
+  }
+  static void TearDownTestSuite() {
+    delete run_;
+    run_ = nullptr;
+  }
+
+  static inline VerifyRun* run_ = nullptr;
+  static inline std::array<double, 2> seams_{};  // ply 3's seams' y, mm
+  static inline testing::ScratchDir* dir_ = new testing::ScratchDir("afp-stagger-close-up");
+};
+
+TEST_F(AfpStaggerCloseUp, TheUpperSeamIsFoundItsOffsetFromTheLowerOne) {
+  const verify::Rule* rule = RuleOf(*run_, "afp.stagger");
+  ASSERT_NE(rule, nullptr);
+  ASSERT_GT(rule->Summary().errors, 0);
+  const verify::Finding* f = FocusFinding(*rule);
+  ASSERT_TRUE(f != nullptr && f->position_mm);
+  EXPECT_EQ(f->subject, "ply 3");
+  EXPECT_NEAR(f->value, kStaggerMm, 0.05) << f->message;
+  const double y = (*f->position_mm)[1];
+  EXPECT_LT(std::min(std::abs(y - seams_[0]), std::abs(y - seams_[1])), 0.3) << y;
+  // The drawing: the seam point, then the lower seam's nearest point, the value apart.
+  const auto d = DrawnBy(*run_, "afp.stagger", "afp_stagger");
+  ASSERT_EQ(d.size(), 2U);
+  EXPECT_NEAR((d[1] - d[0]).norm(), f->value, 1e-9);
+  EXPECT_LT((d[0] - Eigen::Vector3d((*f->position_mm)[0], y, (*f->position_mm)[2])).norm(), 1e-9);
+}
+
+// Two dots and the 2 mm between them in a frame 20 mm across: at least 0.5 % of the picture.
+TEST_F(AfpStaggerCloseUp, TheTwoSeamsAreSeenAndNotHidden) {
+  testing::ExpectSubjectSeen(*run_, "afp.stagger", kOnePercent / 2);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <memory>
@@ -76,17 +77,22 @@ inline std::string EditCourse(const std::string& text, int course,
   return out.str();
 }
 
-/// `text` written to `dir` as `name` and verified on scenes/afp_panel.yaml keeping the laid
-/// material; nullptr (and a test failure) when the run does not finish.
+/// `text` written to `dir` as `name` and verified on `scene` (default scenes/afp_panel.yaml)
+/// keeping the laid material; nullptr (and a test failure) when the run does not finish.
 inline std::unique_ptr<VerifyRun> VerifyPanelText(const std::string& text, const ScratchDir& dir,
-                                                  const std::string& name) {
-  LoadedScene ls = Bundled("afp_panel");
-  if (!ls.scene) return nullptr;
+                                                  const std::string& name,
+                                                  std::filesystem::path scene = {}) {
+  if (scene.empty()) scene = SourceDir() / "scenes" / "afp_panel.yaml";
+  DiagnosticSink load;
+  std::optional<LoadedScene> loaded = LoadScene(scene, scene::LoadOptions{}, load);
+  EXPECT_TRUE(loaded && load.Diagnostics().empty()) << AllDiagnostics(load);
+  if (!loaded) return nullptr;
+  LoadedScene ls = std::move(*loaded);
   const std::string program = dir.File(name);
   std::ofstream(program) << text;
   VerifyRunOptions o;
   o.program = program;
-  o.scene = (SourceDir() / "scenes" / "afp_panel.yaml").string();
+  o.scene = scene.string();
   o.keep_stitch_marks = true;
   DiagnosticSink sink;
   auto run = std::make_unique<VerifyRun>(

@@ -34,9 +34,9 @@ std::string DocumentedFamily(const std::string& id) {
   if (StartsWith(id, "constraint.")) return "constraint";
   if (id == "afp.compaction" || id == "afp.steering_radius" || id == "afp.gap" ||
       id == "afp.overlap" || id == "afp.min_tow_length" || id == "afp.restart_distance" ||
-      id == "afp.fiber_angle")
+      id == "afp.fiber_angle" || id == "afp.stagger")
     return "afp";
-  return "";  // program.*, afp.coverage and afp.stagger: no close-up
+  return "";  // program.* and afp.coverage: no close-up
 }
 
 TEST(RuleRegistry, EveryRuleHasAnIdAFactoryAndTheDocumentedFamily) {
