@@ -41,12 +41,13 @@ struct AfpLook {
 AfpLook LookOf(const std::string& id) {
   if (id == "afp.gap") return {"afp_gap", kAfpGap, "gap"};
   if (id == "afp.overlap") return {"afp_overlap", kAfpOverlap, "overlap"};
-  if (id == "afp.steering_radius") return {"afp_steering", kAfpSteered, "steering radius"};
-  if (id == "afp.compaction") return {"afp_roller", kAfpRoller, "roller"};
-  if (id == "afp.fiber_angle") return {"afp_fiber", kAfpSteered, "fibre angle"};
-  if (id == "afp.min_tow_length") return {"afp_short_piece", kAfpSteered, "short tow piece"};
-  if (id == "afp.restart_distance") return {"afp_restart", kAfpSteered, "restart"};
-  if (id == "afp.stagger") return {"afp_stagger", kAfpSteered, "seams"};
+  if (id == "afp.steering_radius") return {"close_up:afp_steering", kAfpSteered, "steering radius"};
+  if (id == "afp.compaction") return {"close_up:afp_roller", kAfpRoller, "roller"};
+  if (id == "afp.fiber_angle") return {"close_up:afp_fiber", kAfpSteered, "fibre angle"};
+  if (id == "afp.min_tow_length")
+    return {"close_up:afp_short_piece", kAfpSteered, "short tow piece"};
+  if (id == "afp.restart_distance") return {"close_up:afp_restart", kAfpSteered, "restart"};
+  if (id == "afp.stagger") return {"close_up:afp_stagger", kAfpSteered, "seams"};
   return {"", kAfpOther, "finding"};
 }
 

@@ -170,7 +170,7 @@ TEST_F(AfpRuleCloseUps, TheSteeredTowTurnsOnTheBumpsRadiusWhereItWasBent) {
   const int tow = std::stoi(f->subject.substr(4));
   EXPECT_NEAR(std::abs(at.y() - Bump(u)), std::abs(tow - 8.5) * kTowMm, 0.5) << f->subject;
   // The drawn window: three tow centres, the middle one the finding's, ~25 mm either side.
-  const auto w = DrawnBy(*p_->run, "afp.steering_radius", "afp_steering");
+  const auto w = DrawnBy(*p_->run, "afp.steering_radius", "close_up:afp_steering");
   ASSERT_EQ(w.size(), 3U);
   EXPECT_LT((w[1] - at).norm(), 1e-9);
   EXPECT_NEAR((w[0] - w[1]).norm(), 27.5, 2.6);
@@ -199,7 +199,7 @@ TEST_F(AfpRuleCloseUps, TheBentCourseIsFoundOffItsFibreDirectionOnItsSteepestCho
   EXPECT_NEAR(std::abs(at.y() - Bump(at.x() - p_->xc)), std::abs(tow - 8.5) * kTowMm, 0.5);
   // The drawing: the point, then the laid and the design directions' tips 10 mm from it, as
   // far apart as the angle.
-  const auto d = DrawnBy(*p_->run, "afp.fiber_angle", "afp_fiber");
+  const auto d = DrawnBy(*p_->run, "afp.fiber_angle", "close_up:afp_fiber");
   ASSERT_EQ(d.size(), 3U);
   EXPECT_LT((d[0] - at).norm(), 1e-9);
   EXPECT_NEAR(std::acos((d[1] - d[0]).normalized().dot((d[2] - d[0]).normalized())) * kRadToDeg,
@@ -221,7 +221,7 @@ TEST_F(AfpRuleCloseUps, TheRollerIsFoundLiftedWhereCourse1WasRaised) {
   EXPECT_NEAR(*lift.worst_value, kLiftMm / 0.25 * 100.0, 0.01 * kLiftMm / 0.25 * 100.0);
   // The drawn roller: over each of the 17 tow boundaries kLiftMm above its foot, the head's
   // width (101.6 mm) across.
-  const auto r = DrawnBy(*p_->run, "afp.compaction", "afp_roller");
+  const auto r = DrawnBy(*p_->run, "afp.compaction", "close_up:afp_roller");
   ASSERT_EQ(r.size(), 34U);
   for (std::size_t j = 0; j < 17; ++j) EXPECT_NEAR((r[j] - r[j + 17]).norm(), kLiftMm, 0.05) << j;
   EXPECT_NEAR((r[33] - r[17]).norm(), 16 * kTowMm, 0.5);
@@ -333,7 +333,7 @@ TEST_F(AfpStaggerCloseUp, TheUpperSeamIsFoundItsOffsetFromTheLowerOne) {
   const double y = (*f->position_mm)[1];
   EXPECT_LT(std::min(std::abs(y - seams_[0]), std::abs(y - seams_[1])), 0.3) << y;
   // The drawing: the seam point, then the lower seam's nearest point, the value apart.
-  const auto d = DrawnBy(*run_, "afp.stagger", "afp_stagger");
+  const auto d = DrawnBy(*run_, "afp.stagger", "close_up:afp_stagger");
   ASSERT_EQ(d.size(), 2U);
   EXPECT_NEAR((d[1] - d[0]).norm(), f->value, 1e-9);
   EXPECT_LT((d[0] - Eigen::Vector3d((*f->position_mm)[0], y, (*f->position_mm)[2])).norm(), 1e-9);

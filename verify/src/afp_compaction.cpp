@@ -164,7 +164,7 @@ class CompactionRule final : public Rule {
   // the laid surface under them, for its close-up.
   std::vector<DrawnPoints> Drawings() const override {
     std::vector<DrawnPoints> out = {laid_points_.Drawn("afp_laid")};
-    if (!roller_.empty()) out.push_back({"afp_roller", roller_});
+    if (!roller_.empty()) out.push_back({"close_up:afp_roller", roller_});
     return out;
   }
 

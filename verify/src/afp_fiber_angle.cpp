@@ -142,7 +142,7 @@ class FiberAngleRule final : public Rule {
   // the design directions kDrawnMm from it (part mm), for its close-up.
   std::vector<DrawnPoints> Drawings() const override {
     if (drawn_.empty()) return {};
-    return {{"afp_fiber", drawn_}};
+    return {{"close_up:afp_fiber", drawn_}};
   }
 
   void AddLaydownFigures(std::vector<LaydownFigures>& figures) const override {

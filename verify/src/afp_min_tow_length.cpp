@@ -85,7 +85,7 @@ class MinTowLengthRule final : public Rule {
   // The shortest piece under the limit: its centre line's two ends (add, cut), part mm.
   std::vector<DrawnPoints> Drawings() const override {
     if (shortest_ends_.empty()) return {};
-    return {{"afp_short_piece", shortest_ends_}};
+    return {{"close_up:afp_short_piece", shortest_ends_}};
   }
 
  private:

@@ -73,7 +73,7 @@ class RestartDistanceRule final : public Rule {
   // at the re-add (its centre line, part mm).
   std::vector<DrawnPoints> Drawings() const override {
     if (closest_ends_.empty()) return {};
-    return {{"afp_restart", closest_ends_}};
+    return {{"close_up:afp_restart", closest_ends_}};
   }
 
  private:

@@ -171,7 +171,7 @@ class StaggerRule final : public Rule {
   // nearest it (part mm), for its close-up.
   std::vector<DrawnPoints> Drawings() const override {
     if (drawn_.empty()) return {};
-    return {{"afp_stagger", drawn_}};
+    return {{"close_up:afp_stagger", drawn_}};
   }
 
  private:

@@ -101,7 +101,7 @@ class SteeringRadiusRule final : public Rule {
   // and after the measured vertex (the circle's three points), for its close-up.
   std::vector<DrawnPoints> Drawings() const override {
     if (window_.empty()) return {};
-    return {{"afp_steering", window_}};
+    return {{"close_up:afp_steering", window_}};
   }
 
  private:
