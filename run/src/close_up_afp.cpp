@@ -157,8 +157,8 @@ void AddSeamSubject(const CloseUpContext& ctx, const AfpFrame& f, const AfpLook&
 
 // The circle through a, b, c (part frame, mm) from a through b to c, `n` points; the chord
 // a-c when they are in line.
-std::vector<Eigen::Vector3d> ArcThrough(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                        const Eigen::Vector3d& c, int n) {
+std::vector<Eigen::Vector3d> AfpArcThrough(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                           const Eigen::Vector3d& c, int n) {
   const Eigen::Vector3d ab = b - a, ac = c - a, normal = ab.cross(ac);
   if (normal.squaredNorm() < 1e-12 * ab.squaredNorm() * ac.squaredNorm()) return {a, c};
   const Eigen::Vector3d centre =
@@ -176,9 +176,9 @@ std::vector<Eigen::Vector3d> ArcThrough(const Eigen::Vector3d& a, const Eigen::V
 }
 
 // Head tow `tow`'s centre line on every strip within `reach_mm` of `at` (part frame, mm).
-std::vector<std::vector<Eigen::Vector3d>> TowCentreLines(const verify::LaidMaterial& laid, int tow,
-                                                         const Eigen::Vector3d& at,
-                                                         double reach_mm) {
+std::vector<std::vector<Eigen::Vector3d>> AfpTowCentreLines(const verify::LaidMaterial& laid,
+                                                            int tow, const Eigen::Vector3d& at,
+                                                            double reach_mm) {
   std::vector<std::vector<Eigen::Vector3d>> lines;
   if (tow < 1 || tow > laid.tows) return lines;
   for (const verify::LaidStrip& s : laid.strips) {
@@ -198,7 +198,7 @@ std::vector<std::vector<Eigen::Vector3d>> TowCentreLines(const verify::LaidMater
 }
 
 // The head tow a finding names ("tow 5": 5; 0: none).
-int TowOf(const verify::Finding& focus) {
+int AfpTowOf(const verify::Finding& focus) {
   return focus.subject.rfind("tow ", 0) == 0 ? std::atoi(focus.subject.c_str() + 4) : 0;
 }
 
@@ -218,7 +218,7 @@ bool AddSpanSubject(const CloseUpContext& ctx, const AfpFrame& f, const AfpLook&
   const double reach = 0.5 * (e[1] - e[0]).norm() + 0.5;
   bool drawn = false;
   if (laid_between) {
-    for (const auto& line : TowCentreLines(ctx.verifier->Laid(), TowOf(focus), mid, reach)) {
+    for (const auto& line : AfpTowCentreLines(ctx.verifier->Laid(), AfpTowOf(focus), mid, reach)) {
       AddSubjectLine(f, line, f.base_mm + half, look.colour, half, subject, plan);
       drawn = true;
     }
@@ -241,8 +241,8 @@ bool AddSpanSubject(const CloseUpContext& ctx, const AfpFrame& f, const AfpLook&
 }
 
 // An arrow on the surface from `tail` to `tip` (part mm) with a head 3 mm long: a polyline.
-std::vector<Eigen::Vector3d> Arrow(const geom::Surface& surface, const Eigen::Vector3d& tail,
-                                   const Eigen::Vector3d& tip) {
+std::vector<Eigen::Vector3d> AfpArrow(const geom::Surface& surface, const Eigen::Vector3d& tail,
+                                      const Eigen::Vector3d& tip) {
   const Eigen::Vector3d dir = (tip - tail).normalized();
   const Eigen::Vector3d side = surface.Project(tip).normal.cross(dir);
   const Eigen::Vector3d back = tip - 3.0 * dir;
@@ -256,12 +256,12 @@ bool AddFibreSubject(const CloseUpContext& ctx, const AfpFrame& f, const AfpLook
   const std::vector<Eigen::Vector3d> d = DrawnNear(ctx.verifier, look.drawn, f.at, kAfpHalfFrameMm);
   if (d.size() != 3 || ctx.verifier == nullptr) return false;
   const double half = 0.25 * ctx.verifier->Laid().tow_width_mm;
-  for (const auto& line : TowCentreLines(ctx.verifier->Laid(), TowOf(focus), d[0], 24.0)) {
+  for (const auto& line : AfpTowCentreLines(ctx.verifier->Laid(), AfpTowOf(focus), d[0], 24.0)) {
     AddSubjectLine(f, line, f.base_mm + half, look.colour, half, subject, plan);
   }
   // Both from the point, 2.2 times as long as drawn: a wedge as wide as the angle.
   for (const auto& [tip, colour] : {std::pair{d[1], kAfpOverlap}, std::pair{d[2], kAfpArc}}) {
-    AddSubjectLine(f, Arrow(*f.surface, d[0], d[0] + 2.2 * (tip - d[0])),
+    AddSubjectLine(f, AfpArrow(*f.surface, d[0], d[0] + 2.2 * (tip - d[0])),
                    f.base_mm + 2.0 * half + 0.4, colour, 0.4, subject, plan);
   }
   plan.legend.push_back({render::ToRgb(look.colour), "fibre angle " + Fmt("%.3g", focus.value) +
@@ -281,12 +281,12 @@ bool AddSteeringSubject(const CloseUpContext& ctx, const AfpFrame& f, const AfpL
   if (w.size() != 3 || ctx.verifier == nullptr) return false;
   const verify::LaidMaterial& laid = ctx.verifier->Laid();
   const double half = 0.25 * laid.tow_width_mm;
-  const int tow = TowOf(focus);
+  const int tow = AfpTowOf(focus);
   const double reach = std::max((w[0] - w[1]).norm(), (w[2] - w[1]).norm()) + 0.5;
-  for (const auto& line : TowCentreLines(laid, tow, w[1], reach)) {
+  for (const auto& line : AfpTowCentreLines(laid, tow, w[1], reach)) {
     AddSubjectLine(f, line, f.base_mm + half, look.colour, half, subject, plan);
   }
-  AddSubjectLine(f, ArcThrough(w[0], w[1], w[2], 32), f.base_mm + 2.0 * half + 0.2, kAfpArc, 0.2,
+  AddSubjectLine(f, AfpArcThrough(w[0], w[1], w[2], 32), f.base_mm + 2.0 * half + 0.2, kAfpArc, 0.2,
                  subject, plan);
   AddSubjectLine(f, w, f.base_mm + 2.0 * half + 0.8, kAfpArc, 0.8, subject, plan, false);
   plan.legend.push_back({render::ToRgb(look.colour), "steering radius " + Fmt("%.4g", focus.value) +
