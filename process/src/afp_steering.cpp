@@ -40,7 +40,7 @@ void SteeringWindow::Add(const Eigen::Vector3d& centre, const Eigen::Vector3d& n
       while (vertices_[ic].s < b.s + half) ++ic;  // ... and after
       out.push_back(
           {TangentPlaneCircleRadius(vertices_[ia].centre, b.centre, vertices_[ic].centre, b.normal),
-           b.tag});
+           b.tag, vertices_[ia].centre, b.centre, vertices_[ic].centre});
     }
     ++next_;
     // Keep the last vertex a half window before the next one to measure.

@@ -113,7 +113,9 @@ RenderRequest OverviewRequest(const SnapshotInputs& in,
   }
   for (const auto& rule : v.Rules()) {
     for (auto& drawn : rule->Drawings()) {
-      if (drawn.points_mm.empty() || (have_ribbons && drawn.label == "afp_laid")) continue;
+      if (drawn.points_mm.empty() || verify::CloseUpOnly(drawn) ||
+          (have_ribbons && drawn.label == "afp_laid"))
+        continue;
       RenderRequest::PointSet set;
       set.rgba = DrawnColour(drawn.label);
       set.radius_scale = drawn.label == "afp_laid" ? 0.5 : 1.0;

@@ -6,6 +6,7 @@
 // minimum is given (the rule is then skipped).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "afp_test_support.h"
@@ -53,6 +54,11 @@ TEST(AfpMinTowLength, ATowAddedForSixtyMillimetresFiresOnTheLineThatAddsIt) {
   EXPECT_NEAR(*rule->worst_value, 60.0, 1e-9);
   EXPECT_EQ(rule->worst_line, 11);
   EXPECT_NEAR(*testing::SubjectOf(*rule, "tow 4").worst_value, 360.0, 1e-9);
+  // Its place: tow 5's centre where it is added, x = 100, (8.5 - 5) tows to the left (+y:
+  // tool x, across the course, is -y along x).
+  ASSERT_TRUE(rule->findings[0].position_mm);
+  const std::array<double, 3> add = {100.0, (8.5 - 5) * testing::kTowWidth, 0.0};
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR((*rule->findings[0].position_mm)[i], add[i], 1e-6) << i;
 
   const Report longer = RunLines(*scene, PlaneCourse(*scene->surface, 110.0));
   EXPECT_EQ(RuleOf(longer, "afp.min_tow_length")->errors, 0);

@@ -8,6 +8,7 @@
 // tow added again in another course is no restart, and without a minimum the rule is skipped.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "afp_test_support.h"
@@ -57,6 +58,13 @@ TEST(AfpRestartDistance, ATowAddedFortyMillimetresAfterItsCutFiresOnTheReAddingL
     ASSERT_TRUE(rule->worst_value);
     EXPECT_NEAR(*rule->worst_value, by_hand, 1e-6);
     EXPECT_EQ(rule->worst_line, 13);
+    // Its place: tow 3's centre where it is added again, x = 140, (8.5 - 3) tows to the left
+    // (+y: tool x, across the course, is -y along x).
+    ASSERT_TRUE(rule->findings[0].position_mm);
+    const std::array<double, 3> re_add = {140.0, (8.5 - 3) * kTowWidth, 0.0};
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR((*rule->findings[0].position_mm)[i], re_add[i], 1e-6) << i;
+    }
   }
 
   scene->limits.Set(scene::LimitKey::kAfpRestartDistanceMm, 30.0);

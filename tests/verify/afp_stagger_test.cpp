@@ -77,6 +77,13 @@ TEST(AfpStagger, SeamsTwoMillimetresApartFireOnTheUpperPlysLines) {
     EXPECT_NEAR(f.value, 2.0, 1e-6);
     EXPECT_EQ(f.subject, "ply 2");
     EXPECT_NE(f.message.find("from a seam of ply 1 (line 1"), std::string::npos) << f.message;
+    // Where: on ply 2's seam, half a course across from its first course's centre line (y = 2)
+    // and 2 mm from ply 1's (y = 50.8), along the courses (x 0 .. 300) on the plane (z = 0).
+    ASSERT_TRUE(f.position_mm);
+    EXPECT_NEAR((*f.position_mm)[1], 2.0 + 0.5 * kCourse, 1e-6);
+    EXPECT_GE((*f.position_mm)[0], 0.0);
+    EXPECT_LE((*f.position_mm)[0], 300.0);
+    EXPECT_NEAR((*f.position_mm)[2], 0.0, 1e-6);
   }
   ASSERT_TRUE(rule->worst_value);
   EXPECT_NEAR(*rule->worst_value, 2.0, 1e-6);

@@ -143,6 +143,14 @@ TEST(AfpSteering, CourseOfRadius500FiresOnEveryTowOnItsClosedFormRadius) {
     for (std::size_t i = 0; i < expected_lines.size(); ++i) {
       EXPECT_EQ(rule->findings[i].line, expected_lines[i]);
       EXPECT_EQ(rule->findings[i].limit, 635.0);
+      // Its place: tow t's centre at the vertex, on the circle of radius r + (t - 8.5) w
+      // about the course's centre (tool x points out of the circle; tow 1 is innermost).
+      const verify::Finding& f = rule->findings[i];
+      ASSERT_TRUE(f.position_mm);
+      const int t = std::stoi(f.subject.substr(4));
+      EXPECT_NEAR(std::hypot((*f.position_mm)[0], (*f.position_mm)[1]), r + (t - 8.5) * kTowWidth,
+                  1e-6);
+      EXPECT_NEAR((*f.position_mm)[2], 0.0, 1e-9);
     }
     const double inner = r - 7.5 * kTowWidth;
     EXPECT_NEAR(*rule->worst_value, inner, 1e-3 * inner);

@@ -33,9 +33,10 @@ std::string DocumentedFamily(const std::string& id) {
   if (StartsWith(id, "kin.") || StartsWith(id, "dyn.")) return "kinematics";
   if (StartsWith(id, "constraint.")) return "constraint";
   if (id == "afp.compaction" || id == "afp.steering_radius" || id == "afp.gap" ||
-      id == "afp.overlap")
+      id == "afp.overlap" || id == "afp.min_tow_length" || id == "afp.restart_distance" ||
+      id == "afp.fiber_angle" || id == "afp.stagger")
     return "afp";
-  return "";  // program.*, afp.coverage and S17's afp rules: no close-up
+  return "";  // program.* and afp.coverage: no close-up
 }
 
 TEST(RuleRegistry, EveryRuleHasAnIdAFactoryAndTheDocumentedFamily) {

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "afp_laid.h"
 #include "afp_thickness.h"
@@ -116,6 +117,7 @@ class CompactionRule final : public Rule {
         if (i == kStandoff && (ply_mm <= 0.0 || !programmed)) continue;
         const double pct = limit > 0 ? values[i] / limit * 100.0 : (values[i] > 0) * 1e9;
         ObserveSubject(i, pct, line->source_line, 0);
+        if (pct > 100.0 && pct > worst_pct_) KeepRoller(pose, pct, d, h.max_mm);
         CheckUpper(
             pct, line->source_line, 0, kMeasures[i].subject,
             [&] {
@@ -157,14 +159,41 @@ class CompactionRule final : public Rule {
 
   const detail::ThicknessBelow& Below() const { return below_; }
 
-  // The laid courses' centre and outer edges (the compaction rule visits every laying pose).
-  std::vector<DrawnPoints> Drawings() const override { return {laid_points_.Drawn("afp_laid")}; }
+  // The laid courses' centre and outer edges (the compaction rule visits every laying pose);
+  // the worst pose over a limit: its roller over the k + 1 tow boundaries, then its foot on
+  // the laid surface under them, for its close-up.
+  std::vector<DrawnPoints> Drawings() const override {
+    std::vector<DrawnPoints> out = {laid_points_.Drawn("afp_laid")};
+    if (!roller_.empty()) out.push_back({"close_up:afp_roller", roller_});
+    return out;
+  }
 
  private:
+  // The roller at `pose` as the rule measures it: across the tows, over each tow boundary on
+  // the tool surface by the tool point's height `d_mm` plus the roll's rise at that boundary;
+  // its foot: the boundaries on the laid surface (raised by `laid_mm`, the thickest below).
+  void KeepRoller(const detail::LaidPose& pose, double pct, double d_mm, double laid_mm) {
+    worst_pct_ = pct;
+    const int k = laid_->Layout().tows;
+    const Eigen::Vector3d n0 = laid_->Surface().Normal(pose.cross.centre_uv);
+    const double rise = pose.tool.linear().col(0).dot(n0);  // sine of the signed roll
+    const double slope = rise / std::sqrt(std::max(1e-12, 1.0 - rise * rise));
+    roller_.resize(2 * static_cast<std::size_t>(k + 1));
+    for (int j = 0; j <= k; ++j) {
+      const std::size_t i = static_cast<std::size_t>(j);
+      const Eigen::Vector3d n = laid_->Surface().Normal(pose.cross.boundary_uv[i]);
+      const double across = (j - 0.5 * k) * laid_->Layout().width_mm;
+      roller_[i] = pose.cross.boundary[i] + (d_mm + across * slope) * n;
+      roller_[i + static_cast<std::size_t>(k + 1)] = pose.cross.boundary[i] + laid_mm * n;
+    }
+  }
+
   std::shared_ptr<detail::LaidTows> laid_;
   detail::ThinnedPoints laid_points_;
   std::array<double, kMeasures.size()> limits_{};
   detail::ThicknessBelow below_;
+  double worst_pct_ = 0.0;               ///< the worst percent over a limit so far
+  std::vector<Eigen::Vector3d> roller_;  ///< its roller, then its foot, 2 (k + 1), part mm
 };
 
 }  // namespace

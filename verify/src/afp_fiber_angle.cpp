@@ -67,6 +67,7 @@ class FiberAngleRule final : public Rule {
     const geom::Surface& surface = laid_->Surface();
     double worst = -1.0;
     int worst_tow = 0;
+    Seen worst_seen, tow_seen;  // where the line's worst tow and this tow deviate most
     for (int t = 1; t <= laid_->Layout().tows; ++t) {
       if (!detail::TowLaid(line->tows, t)) continue;
       double tow_worst = -1.0;
@@ -96,7 +97,10 @@ class FiberAngleRule final : public Rule {
         if (!design) continue;
         const double c = std::clamp(std::abs(laid.normalized().dot(*design)), 0.0, 1.0);
         const double deg = RadToDeg(std::acos(c));
-        tow_worst = std::max(tow_worst, deg);
+        if (deg > tow_worst) {
+          tow_worst = deg;
+          tow_seen = {0.5 * (p_prev + pb), laid.normalized(), *design};
+        }
         const auto k = static_cast<std::size_t>(t);
         map_.PaintMax({pair->cross.boundary_uv[k - 1], pair->cross.boundary_uv[k],
                        pose.cross.boundary_uv[k], pose.cross.boundary_uv[k - 1]},
@@ -108,6 +112,7 @@ class FiberAngleRule final : public Rule {
       if (tow_worst > worst) {
         worst = tow_worst;
         worst_tow = t;
+        worst_seen = tow_seen;
       }
     }
     if (worst < 0.0) return;
@@ -123,7 +128,21 @@ class FiberAngleRule final : public Rule {
                         line->ply, line->course, worst_tow, RadToDeg(ply.angle_rad));
           return std::string(buf);
         },
-        nullptr);
+        nullptr, &worst_seen.at);
+    if (worst > *summary_.error_limit && worst > drawn_deg_) {
+      drawn_deg_ = worst;
+      // Fibres are lines: the design direction drawn on the laid one's side.
+      const double sign = worst_seen.design.dot(worst_seen.laid) < 0 ? -1.0 : 1.0;
+      drawn_ = {worst_seen.at, worst_seen.at + kDrawnMm * worst_seen.laid,
+                worst_seen.at + sign * kDrawnMm * worst_seen.design};
+    }
+  }
+
+  // The worst deviation over the limit: the tow's centre there, then the tips of the laid and
+  // the design directions kDrawnMm from it (part mm), for its close-up.
+  std::vector<DrawnPoints> Drawings() const override {
+    if (drawn_.empty()) return {};
+    return {{"close_up:afp_fiber", drawn_}};
   }
 
   void AddLaydownFigures(std::vector<LaydownFigures>& figures) const override {
@@ -141,9 +160,18 @@ class FiberAngleRule final : public Rule {
   const detail::WorstValueGrid& Map() const { return map_; }
 
  private:
+  static constexpr double kDrawnMm = 10.0;
+  struct Seen {
+    Eigen::Vector3d at = Eigen::Vector3d::Zero();       ///< tow centre, part mm
+    Eigen::Vector3d laid = Eigen::Vector3d::UnitX();    ///< laid direction, unit
+    Eigen::Vector3d design = Eigen::Vector3d::UnitX();  ///< design direction, unit
+  };
+
   std::shared_ptr<detail::LaidTows> laid_;
   const std::vector<scene::PlySpec>* plies_;
-  std::map<int, double> ply_worst_;  ///< the worst deviation per ply (M70 P<n>), deg
+  double drawn_deg_ = 0.0;              ///< the deviation drawn_ shows, deg
+  std::vector<Eigen::Vector3d> drawn_;  ///< see Drawings()
+  std::map<int, double> ply_worst_;     ///< the worst deviation per ply (M70 P<n>), deg
   /// The worst deviation per cell over the plies, deg: the tow quads painted.
   detail::WorstValueGrid map_;
 };
@@ -156,7 +184,7 @@ const detail::WorstValueGrid* detail::FiberAngleGridOf(const Rule& rule) {
 }
 
 RuleEntry AfpFiberAngleRuleEntry() {
-  return {"afp.fiber_angle", CloseUpFamily::kNone, detail::RunsWhenLaying,
+  return {"afp.fiber_angle", CloseUpFamily::kAfp, detail::RunsWhenLaying,
           detail::MakeLaying<FiberAngleRule>};
 }
 

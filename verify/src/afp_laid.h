@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -111,6 +112,9 @@ struct TowShortfall {
   /// A second line the finding names (afp.min_tow_length, afp.restart_distance: the last line
   /// that laid the tow before its cut).
   int other_line = 0;
+  /// Where the figure was measured (the tow's centre on the surface, part frame, mm): the
+  /// finding's position.
+  std::optional<Eigen::Vector3d> position_mm;
 };
 
 /// Keeps `s` for `line` unless a smaller value is kept there already.

@@ -66,7 +66,8 @@ class MinTowLengthRule final : public Rule {
           piece.open && piece.course == line->course && (piece.last - point).norm() < join_tol;
       if (!continues) {
         if (piece.open) Cut(piece, t);
-        piece = Piece{true, line->course, record.source_line, record.source_line, 0.0, point};
+        piece =
+            Piece{true, line->course, record.source_line, record.source_line, 0.0, point, point};
       }
       for (std::size_t k = 1; k < line->poses.size(); ++k) {
         const Eigen::Vector3d next = surface.Point(detail::TowCentreUv(line->poses[k].cross, t));
@@ -81,6 +82,12 @@ class MinTowLengthRule final : public Rule {
 
   void Finish(const RuleContext&) override { CutAll(); }
 
+  // The shortest piece under the limit: its centre line's two ends (add, cut), part mm.
+  std::vector<DrawnPoints> Drawings() const override {
+    if (shortest_ends_.empty()) return {};
+    return {{"close_up:afp_short_piece", shortest_ends_}};
+  }
+
  private:
   struct Piece {
     bool open = false;
@@ -88,7 +95,8 @@ class MinTowLengthRule final : public Rule {
     int first_line = 0;  ///< the line that adds the piece
     int last_line = 0;   ///< the last line that lays it
     double length_mm = 0.0;
-    Eigen::Vector3d last = Eigen::Vector3d::Zero();  ///< the centre line's end so far
+    Eigen::Vector3d last = Eigen::Vector3d::Zero();   ///< the centre line's end so far
+    Eigen::Vector3d first = Eigen::Vector3d::Zero();  ///< its start (the add), part mm
   };
 
   void CutAll() {
@@ -104,7 +112,12 @@ class MinTowLengthRule final : public Rule {
     piece.open = false;
     ObserveSmallest(piece.length_mm, piece.first_line, static_cast<std::size_t>(tow) - 1);
     if (piece.length_mm < *summary_.error_limit) {
-      detail::KeepSmallest(short_, piece.first_line, {piece.length_mm, tow, piece.last_line});
+      detail::KeepSmallest(short_, piece.first_line,
+                           {piece.length_mm, tow, piece.last_line, piece.first});
+      if (piece.length_mm < shortest_) {
+        shortest_ = piece.length_mm;
+        shortest_ends_ = {piece.first, piece.last};
+      }
     }
   }
 
@@ -121,19 +134,22 @@ class MinTowLengthRule final : public Rule {
                     "the head's cutter-to-roller distance of %.4g mm",
                     s.tow, s.value, s.other_line, *summary_.error_limit);
       Record(FindingSeverity::kError, s.value, *summary_.error_limit, line, 0,
-             "tow " + std::to_string(s.tow), buf, nullptr);
+             "tow " + std::to_string(s.tow), buf, nullptr,
+             s.position_mm ? &*s.position_mm : nullptr);
     });
   }
 
   std::shared_ptr<detail::LaidTows> laid_;
   std::vector<Piece> tows_;                    ///< per tow (index 1..k)
   std::map<int, detail::TowShortfall> short_;  ///< per add line: the shortest piece under the limit
+  double shortest_ = std::numeric_limits<double>::infinity();  ///< mm
+  std::vector<Eigen::Vector3d> shortest_ends_;                 ///< its add and cut ends, part mm
 };
 
 }  // namespace
 
 RuleEntry AfpMinTowLengthRuleEntry() {
-  return {"afp.min_tow_length", CloseUpFamily::kNone,
+  return {"afp.min_tow_length", CloseUpFamily::kAfp,
           [](const RuleContext& ctx) {
             return detail::RunsWhenLayingWithLimit(
                 ctx, scene::MinTowLengthMm(*ctx.scene),

@@ -12,6 +12,7 @@
 // (the closest restart added there), on the line that adds the tow again, with the line after
 // which it was cut in the message.
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -63,8 +64,16 @@ class RestartDistanceRule final : public Rule {
                     "of %.4g mm",
                     s.tow, s.value, s.other_line, *summary_.error_limit);
       Record(FindingSeverity::kError, s.value, *summary_.error_limit, at, 0,
-             "tow " + std::to_string(s.tow), buf, nullptr);
+             "tow " + std::to_string(s.tow), buf, nullptr,
+             s.position_mm ? &*s.position_mm : nullptr);
     });
+  }
+
+  // The closest restart under the limit: the tow's last point before its cut and its first
+  // at the re-add (its centre line, part mm).
+  std::vector<DrawnPoints> Drawings() const override {
+    if (closest_ends_.empty()) return {};
+    return {{"close_up:afp_restart", closest_ends_}};
   }
 
  private:
@@ -75,6 +84,7 @@ class RestartDistanceRule final : public Rule {
     int cut_line = 0;           ///< the last line that laid it
     double since_cut_mm = 0.0;  ///< centre line followed since the cut, mm
     Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< the centre line's last point, part mm
+    Eigen::Vector3d cut = Eigen::Vector3d::Zero();    ///< the last point laid before the cut
   };
 
   // The sampled line: the shared sampling for a laying line, else this rule's own of a feed
@@ -90,6 +100,7 @@ class RestartDistanceRule final : public Rule {
     if (!track.laying) return;
     track.laying = false;
     track.since_cut_mm = 0.0;
+    track.cut = track.point;
   }
 
   // Follows tow `tow`'s centre line over `line`: the distance since its cut while the line
@@ -120,7 +131,11 @@ class RestartDistanceRule final : public Rule {
   void Restart(const TowTrack& track, int tow, int line) {
     ObserveSmallest(track.since_cut_mm, line, static_cast<std::size_t>(tow) - 1);
     if (track.since_cut_mm < *summary_.error_limit) {
-      detail::KeepSmallest(short_, line, {track.since_cut_mm, tow, track.cut_line});
+      detail::KeepSmallest(short_, line, {track.since_cut_mm, tow, track.cut_line, track.point});
+      if (track.since_cut_mm < closest_) {
+        closest_ = track.since_cut_mm;
+        closest_ends_ = {track.cut, track.point};
+      }
     }
   }
 
@@ -129,12 +144,14 @@ class RestartDistanceRule final : public Rule {
   int course_ = 0, ply_ = 0;                   ///< the course followed (0: none)
   detail::LaidLine path_;                      ///< a feed move laying no tow, as sampled here
   std::map<int, detail::TowShortfall> short_;  ///< per re-add line: the closest restart
+  double closest_ = std::numeric_limits<double>::infinity();  ///< mm
+  std::vector<Eigen::Vector3d> closest_ends_;  ///< its cut and re-add points, part mm
 };
 
 }  // namespace
 
 RuleEntry AfpRestartDistanceRuleEntry() {
-  return {"afp.restart_distance", CloseUpFamily::kNone,
+  return {"afp.restart_distance", CloseUpFamily::kAfp,
           [](const RuleContext& ctx) {
             return detail::RunsWhenLayingWithLimit(
                 ctx, scene::MinRestartMm(*ctx.scene),

@@ -71,11 +71,13 @@ class StaggerGrid {
 
 /// A seam point too near another ply's seam, waiting for the end of the comparisons.
 struct StaggerNear {
-  double value = 0.0;   ///< mm
-  int ply = 0;          ///< the ply whose seam point it is
-  int below = 0;        ///< the ply whose seam it is near
-  int other_line = 0;   ///< the line that laid that seam
-  double offset = 0.0;  ///< the laminate's stagger offset, mm
+  double value = 0.0;                               ///< mm
+  int ply = 0;                                      ///< the ply whose seam point it is
+  int below = 0;                                    ///< the ply whose seam it is near
+  int other_line = 0;                               ///< the line that laid that seam
+  double offset = 0.0;                              ///< the laminate's stagger offset, mm
+  Eigen::Vector3d at = Eigen::Vector3d::Zero();     ///< the seam point, part frame, mm
+  Eigen::Vector3d other = Eigen::Vector3d::Zero();  ///< the nearest point of the other seam
 };
 
 /// A piece of seam: two consecutive points of a course edge that is a seam.
@@ -84,12 +86,13 @@ struct StaggerPiece {
   int line = 0;
 };
 
-double StaggerPointToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                             const Eigen::Vector3d& b) {
+// The point of segment a-b nearest `p`.
+Eigen::Vector3d StaggerNearestOnSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                        const Eigen::Vector3d& b) {
   const Eigen::Vector3d ab = b - a;
   const double len2 = ab.squaredNorm();
   const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * ab)).norm();
+  return a + t * ab;
 }
 
 class StaggerRule final : public Rule {
@@ -159,8 +162,16 @@ class StaggerRule final : public Rule {
                     "of %.4g mm",
                     s.ply, s.value, s.below, s.other_line, s.offset);
       Record(FindingSeverity::kError, s.value, s.offset, line, 0, "ply " + std::to_string(s.ply),
-             buf, nullptr);
+             buf, nullptr, &s.at);
+      if (drawn_.empty() || s.value < (drawn_[1] - drawn_[0]).norm()) drawn_ = {s.at, s.other};
     }
+  }
+
+  // The nearest seams under the offset: the seam point, then the other ply's seam point
+  // nearest it (part mm), for its close-up.
+  std::vector<DrawnPoints> Drawings() const override {
+    if (drawn_.empty()) return {};
+    return {{"close_up:afp_stagger", drawn_}};
   }
 
  private:
@@ -217,11 +228,14 @@ class StaggerRule final : public Rule {
     for (const StaggerPiece& s : mine) {
       double best = std::numeric_limits<double>::infinity();
       int best_line = 0;
+      Eigen::Vector3d best_point = Eigen::Vector3d::Zero();
       grid.Near(s.b, [&](std::size_t id) {
-        const double d = StaggerPointToSegment(s.b, theirs[id].a, theirs[id].b);
+        const Eigen::Vector3d q = StaggerNearestOnSegment(s.b, theirs[id].a, theirs[id].b);
+        const double d = (s.b - q).norm();
         if (d < best) {
           best = d;
           best_line = theirs[id].line;
+          best_point = q;
         }
       });
       if (!(best < reach)) {  // no seam within reach: at least the offset away
@@ -235,6 +249,8 @@ class StaggerRule final : public Rule {
         StaggerNear t = pair;
         t.value = best;
         t.other_line = best_line;
+        t.at = s.b;
+        t.other = best_point;
         near[s.line] = t;
       }
     }
@@ -242,13 +258,14 @@ class StaggerRule final : public Rule {
 
   std::shared_ptr<detail::LaidTows> laid_;
   const scene::Scene* scene_;
-  std::map<int, StaggerPly> plies_;  ///< by ply number: what each laid
+  std::map<int, StaggerPly> plies_;     ///< by ply number: what each laid
+  std::vector<Eigen::Vector3d> drawn_;  ///< see Drawings()
 };
 
 }  // namespace
 
 RuleEntry AfpStaggerRuleEntry() {
-  return {"afp.stagger", CloseUpFamily::kNone,
+  return {"afp.stagger", CloseUpFamily::kAfp,
           [](const RuleContext& ctx) {
             if (ctx.scene->head.IsStitching()) return RulePresence::Absent();
             if (ctx.scene->laminates.empty()) {

@@ -86,7 +86,7 @@ class SteeringRadiusRule final : public Rule {
         tow.last = surface.Point(uv);
         tow.window.Add(tow.last, surface.Normal(uv), line->source_line, radii_);
       }
-      for (const auto& r : radii_) Consider(r.radius_mm, r.tag, t);
+      for (const auto& r : radii_) Consider(r, t);
     }
     // Lines before every tow's next unmeasured vertex are complete.
     Flush(line->source_line - 1);
@@ -95,6 +95,13 @@ class SteeringRadiusRule final : public Rule {
   void Finish(const RuleContext&) override {
     for (Tow& tow : tows_) tow.laying = false;
     Flush(std::numeric_limits<int>::max());
+  }
+
+  // The smallest radius under the limit: the steered tow's centres a half window before, at
+  // and after the measured vertex (the circle's three points), for its close-up.
+  std::vector<DrawnPoints> Drawings() const override {
+    if (window_.empty()) return {};
+    return {{"close_up:afp_steering", window_}};
   }
 
  private:
@@ -106,10 +113,18 @@ class SteeringRadiusRule final : public Rule {
   };
   // Counts one measurement of tow `tow` and tracks the smallest radius (the rule's and the
   // tow's: Rule::Observe keeps the largest); a radius under the limit waits for its line.
-  void Consider(double radius, int line, int tow) {
+  // The smallest radius under the limit keeps its window's three tow centres (Drawings()).
+  void Consider(const SteeringWindow::Radius& r, int tow) {
+    const double radius = r.radius_mm;
+    const int line = r.tag;
     ObserveSmallest(radius, line, static_cast<std::size_t>(tow) - 1);
     if (detail::LaidFigures* f = laid_->Figures()) f->SteeringRadius(line, tow, radius);
-    if (radius < *summary_.error_limit) detail::KeepSmallest(below_, line, {radius, tow, 0});
+    if (radius >= *summary_.error_limit) return;
+    detail::KeepSmallest(below_, line, {radius, tow, 0, r.at});
+    if (radius < smallest_below_) {
+      smallest_below_ = radius;
+      window_ = {r.before, r.at, r.after};
+    }
   }
 
   // Records the lines up to `last_line` with a radius under the limit: one finding per line.
@@ -125,7 +140,8 @@ class SteeringRadiusRule final : public Rule {
                     "radius of %.4g mm",
                     worst.tow, worst.value, *summary_.error_limit);
       Record(FindingSeverity::kError, worst.value, *summary_.error_limit, line, 0,
-             "tow " + std::to_string(worst.tow), buf, nullptr);
+             "tow " + std::to_string(worst.tow), buf, nullptr,
+             worst.position_mm ? &*worst.position_mm : nullptr);
     });
   }
 
@@ -133,6 +149,8 @@ class SteeringRadiusRule final : public Rule {
   std::vector<Tow> tows_;  ///< per tow (index 1..k)
   std::vector<SteeringWindow::Radius> radii_;
   std::map<int, detail::TowShortfall> below_;  ///< per line: the smallest radius under the limit
+  double smallest_below_ = std::numeric_limits<double>::infinity();  ///< mm
+  std::vector<Eigen::Vector3d> window_;  ///< its three tow centres, part frame, mm
 };
 
 }  // namespace

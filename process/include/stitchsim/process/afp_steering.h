@@ -33,6 +33,10 @@ class SteeringWindow {
   struct Radius {
     double radius_mm = 0.0;
     int tag = 0;  ///< the measured vertex's tag (the caller's line or point)
+    /// The three tow centres the circle passes through: a half window before, the measured
+    /// vertex, a half window after (part frame, mm).
+    Eigen::Vector3d before = Eigen::Vector3d::Zero(), at = Eigen::Vector3d::Zero(),
+                    after = Eigen::Vector3d::Zero();
   };
   /// Adds the next vertex (tow centre on the surface, unit normal there); appends to `out` the
   /// radii of vertices that now have a vertex a half window after them.

@@ -74,11 +74,16 @@ enum class CloseUpFamily {
 const char* CloseUpFamilyName(CloseUpFamily family);
 
 /// Points a rule asks the overview snapshot to draw, by label ("afp_laid", "afp_gap", ...),
-/// part frame, mm; bounded (thinned evenly) by the rule.
+/// part frame, mm; bounded (thinned evenly) by the rule. A label starting with
+/// kCloseUpOnlyLabel ("close_up:afp_roller", ...) is for the rule's close-up only (its worst
+/// finding's few points: run/src/close_up_afp.cpp); the overview leaves it out.
 struct DrawnPoints {
   std::string label;
   std::vector<Eigen::Vector3d> points_mm;
 };
+inline constexpr const char* kCloseUpOnlyLabel = "close_up:";
+/// True when `d` is for the rule's close-up only (its label starts with kCloseUpOnlyLabel).
+inline bool CloseUpOnly(const DrawnPoints& d) { return d.label.rfind(kCloseUpOnlyLabel, 0) == 0; }
 
 class Rule {
  public:
