@@ -127,7 +127,7 @@ json PageDrawingsJson(const verify::Verifier& v) {
   json out = json::array();
   for (const auto& rule : v.Rules()) {
     for (const verify::DrawnPoints& d : rule->Drawings()) {
-      if (d.points_mm.empty()) continue;
+      if (d.points_mm.empty() || verify::CloseUpOnly(d)) continue;  // the close-up's own
       std::vector<float> pos;
       for (const auto& p : d.points_mm) {
         pos.insert(pos.end(), {static_cast<float>(p.x()), static_cast<float>(p.y()),
