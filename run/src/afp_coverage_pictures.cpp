@@ -234,21 +234,29 @@ void DrawLaid(render::Image& out, const uv::UvFrame& f, const verify::LaidMateri
 }
 
 // Fibre direction: three arrows a course, along its stations (the middle of the tows laid) at
-// a quarter, half and three quarters of them.
+// a quarter, half and three quarters of its length on the map (stations crowd where tows are
+// cut and added: counted by station, the three would fall together there).
 void DrawArrows(render::Image& out, const uv::UvFrame& f, const verify::LaidMaterial& laid,
                 int ply) {
   std::vector<std::pair<std::size_t, int>> stations;  // station, boundary in the laid middle
   auto flush = [&] {
+    std::vector<Eigen::Vector2d> at;  // the stations' middles, pixels
+    std::vector<double> run{0.0};     // the length along them
+    for (const auto& [st, b] : stations) {
+      at.push_back(f.ToPixel(
+          0.5 * (laid.BoundaryUv(st, b / 2) + laid.BoundaryUv(st, (b + 1) / 2)).cast<double>()));
+      if (at.size() > 1) {
+        const double step = (at.back() - at[at.size() - 2]).norm();
+        run.push_back(run.back() + (std::isfinite(step) ? step : 0.0));
+      }
+    }
     for (double q : {0.25, 0.5, 0.75}) {
-      if (stations.size() < 2) break;
-      const auto i = std::min(static_cast<std::size_t>(q * static_cast<double>(stations.size())),
-                              stations.size() - 2);
-      const auto [sa, ba] = stations[i];
-      const auto [sb, bb] = stations[i + 1];
-      const Eigen::Vector2d a = f.ToPixel(
-          0.5 * (laid.BoundaryUv(sa, ba / 2) + laid.BoundaryUv(sa, (ba + 1) / 2)).cast<double>());
-      const Eigen::Vector2d b = f.ToPixel(
-          0.5 * (laid.BoundaryUv(sb, bb / 2) + laid.BoundaryUv(sb, (bb + 1) / 2)).cast<double>());
+      if (at.size() < 2) break;
+      const auto i = std::min<std::size_t>(
+          static_cast<std::size_t>(std::upper_bound(run.begin(), run.end(), q * run.back()) -
+                                   run.begin()),
+          at.size() - 1);
+      const Eigen::Vector2d a = at[i - 1], b = at[i];
       if (!a.allFinite() || !b.allFinite() || !((b - a).norm() > 1e-9)) continue;
       const Eigen::Vector2d d = (b - a).normalized() * 11.0;
       uv::Arrow(out, a - d, a + d, 6, kArrowInk);

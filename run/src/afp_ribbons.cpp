@@ -57,10 +57,10 @@ void Keep(RibbonRun& r, const Eigen::Vector3d& point, const Eigen::Vector3d& nor
 }  // namespace
 
 std::array<float, 4> PlyColour(int ply) {
-  // 12 colours told apart in print (8-bit RGB), repeated past 12 plies.
+  // 12 colours told apart in print and from the grey part (8-bit RGB), repeated past 12 plies.
   static constexpr std::array<unsigned char, 36> kPalette = {
-      31,  119, 180, 255, 127, 14, 44, 160, 44,  148, 103, 189, 140, 86,  75,  227, 119, 194,
-      127, 127, 127, 188, 189, 34, 23, 190, 207, 0,   51,  140, 153, 230, 102, 128, 0,   64};
+      31, 119, 180, 255, 127, 14, 44, 160, 44,  148, 103, 189, 140, 86,  75,  227, 119, 194,
+      0,  128, 128, 188, 189, 34, 23, 190, 207, 0,   51,  140, 153, 230, 102, 128, 0,   64};
   const std::size_t i = 3 * (static_cast<std::size_t>(std::max(0, ply - 1)) % 12);
   return {kPalette[i] / 255.0F, kPalette[i + 1] / 255.0F, kPalette[i + 2] / 255.0F, 1.0F};
 }

@@ -25,6 +25,17 @@ constexpr int kOverviewHeight = 960;
 // The overview's ribbon boxes at most (MuJoCo's scene holds 20000 geoms with the model's).
 constexpr std::size_t kMaxRibbonSegments = 12000;
 
+// "2nd", "3rd", "21st", "4th", ...
+std::string Ordinal(int n) {
+  const int tens = n % 100, last = n % 10;
+  const char* suffix = (tens >= 11 && tens <= 13) ? "th"
+                       : last == 1                ? "st"
+                       : last == 2                ? "nd"
+                       : last == 3                ? "rd"
+                                                  : "th";
+  return std::to_string(n) + suffix;
+}
+
 // Colours by verdict (overview).
 constexpr std::array<float, 4> kCleanRgba = {0.1f, 0.85f, 0.2f, 1.0f};
 constexpr std::array<float, 4> kWarnRgba = {1.0f, 0.65f, 0.0f, 1.0f};
@@ -108,8 +119,7 @@ RenderRequest OverviewRequest(const SnapshotInputs& in,
     ply_legend.push_back(
         {{0, 0, 0},
          "thinned: " + std::to_string(ribbons.tows_per_ribbon) + " tows per ribbon, every " +
-             (ribbons.station_step > 1 ? std::to_string(ribbons.station_step) + "th " : "") +
-             "station"});
+             (ribbons.station_step > 1 ? Ordinal(ribbons.station_step) + " " : "") + "station"});
   }
   for (const auto& rule : v.Rules()) {
     for (auto& drawn : rule->Drawings()) {
