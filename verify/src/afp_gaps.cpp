@@ -222,16 +222,20 @@ class CourseEdgeRule final : public Rule {
   // direction there, in (u, v)) at kSlantDeg or more.
   bool SlantedBoundaryNear(const geom::Polygon2& boundary, const EdgePoint& e) const {
     constexpr double kSlantDeg = 5.0;
-    const geom::Surface& surface = laid_->Surface();
-    const Eigen::Vector3d along = surface.Normal(e.uv).cross(e.outward);
-    const Eigen::Vector2d t = surface.ProjectFrom(e.point + along, e.uv).uv - e.uv;
-    const double sin_min = std::sin(kSlantDeg * kPi / 180.0) * t.norm();
+    std::optional<Eigen::Vector2d> t;  // the edge's direction in (u, v), found when needed
+    double sin_min = 0.0;
     for (std::size_t i = 0, n = boundary.size(); i < n; ++i) {
-      const Eigen::Vector2d a = boundary[i], ab = boundary[(i + 1) % n] - a;
-      const double len2 = std::max(ab.squaredNorm(), 1e-300);
-      const double s = std::clamp((e.uv - a).dot(ab) / len2, 0.0, 1.0);
-      if ((a + s * ab - e.uv).norm() > width_mm_) continue;
-      if (std::abs(t.x() * ab.y() - t.y() * ab.x()) >= sin_min * std::sqrt(len2)) return true;
+      const Eigen::Vector2d& a = boundary[i];
+      const Eigen::Vector2d& b = boundary[(i + 1) % n];
+      if (geom::DistanceToSegment(a, b, e.uv) > width_mm_) continue;
+      if (!t) {  // a projection: only for points in the band
+        const geom::Surface& surface = laid_->Surface();
+        const Eigen::Vector3d along = surface.Normal(e.uv).cross(e.outward);
+        t = surface.ProjectFrom(e.point + along, e.uv).uv - e.uv;
+        sin_min = std::sin(kSlantDeg * kPi / 180.0) * t->norm();
+      }
+      const Eigen::Vector2d ab = b - a;
+      if (std::abs(t->x() * ab.y() - t->y() * ab.x()) >= sin_min * ab.norm()) return true;
     }
     return false;
   }

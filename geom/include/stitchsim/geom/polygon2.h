@@ -81,13 +81,19 @@ inline double FractionOutside(const Polygon2& p, const Eigen::Vector2d& a,
   return std::clamp(outside, 0.0, 1.0);
 }
 
+/// Distance from x to the segment a-b.
+inline double DistanceToSegment(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                const Eigen::Vector2d& x) {
+  const Eigen::Vector2d d = b - a;
+  const double t = std::clamp((x - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+  return (a + t * d - x).norm();
+}
+
 /// Distance from x to the polygon's edges.
 inline double DistanceToPolygon(const Polygon2& p, const Eigen::Vector2d& x) {
   double best = INFINITY;
   for (std::size_t i = 0, n = p.size(); i < n; ++i) {
-    const Eigen::Vector2d a = p[i], d = p[(i + 1) % n] - a;
-    const double t = std::clamp((x - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
-    best = std::min(best, (a + t * d - x).norm());
+    best = std::min(best, DistanceToSegment(p[i], p[(i + 1) % n], x));
   }
   return best;
 }
