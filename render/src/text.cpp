@@ -172,20 +172,30 @@ bool OpenSnapshotFonts(int image_width, SnapshotFonts& fonts, std::string& error
 }
 
 int DrawTitleBar(Image& image, const SnapshotFonts& fonts, const TitleBar& title) {
+  return DrawTitleBand(&image, fonts, {{title.line1, title.line2}, title.accent});
+}
+
+int DrawTitleBand(Image* image, const SnapshotFonts& fonts, const TitleBand& band) {
   const Font& b = *fonts.bold;
   const Font& r = *fonts.regular;
   const int pad = std::max(4, r.PixelHeight() / 2);
-  const int line1 = b.Ascender() + b.Descender();
-  const int line2 = r.Ascender() + r.Descender();
-  const int height = pad + line1 + pad / 2 + line2 + pad;
-  FillRect(image, 0, 0, image.width, height, {24, 26, 30}, 0.88);
+  const int bold_row = b.Ascender() + b.Descender();
+  const int row = r.Ascender() + r.Descender() + band.row_gap;
+  const int rows = static_cast<int>(band.lines.size() > 1 ? band.lines.size() - 1 : 0);
+  const int height = pad + bold_row + pad / 2 + rows * row + pad;
+  if (image == nullptr) return height;
+  FillRect(*image, 0, 0, image->width, height, band.background, band.opacity);
   const int stripe = std::max(4, pad);
-  FillRect(image, 0, 0, stripe, height, title.accent, 1.0);
+  FillRect(*image, 0, 0, stripe, height, band.accent, 1.0);
   const int x = stripe + pad;
-  const int width = image.width - x - pad;
-  DrawText(image, b, x, pad + b.Ascender(), Fit(b, title.line1, width), {255, 255, 255});
-  DrawText(image, r, x, pad + line1 + pad / 2 + r.Ascender(), Fit(r, title.line2, width),
-           {225, 228, 232});
+  const int width = image->width - x - pad;
+  for (std::size_t i = 0; i < band.lines.size(); ++i) {
+    const Font& f = i == 0 ? b : r;
+    const int y = i == 0 ? pad + b.Ascender()
+                         : pad + bold_row + pad / 2 + r.Ascender() + static_cast<int>(i - 1) * row;
+    DrawText(*image, f, x, y, Fit(f, band.lines[i], width),
+             i == 0 ? Rgb{255, 255, 255} : Rgb{225, 228, 232});
+  }
   return height;
 }
 

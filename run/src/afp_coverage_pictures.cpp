@@ -168,6 +168,11 @@ std::string Verdict(const verify::Verifier& v, const std::string& ply_name, cons
   return unknown ? "verdict not known (findings truncated)" : "PASS";
 }
 
+// The title block: `lines` on an opaque band across the top, a blue stripe at its left.
+render::TitleBand TitleBandOf(const std::vector<std::string>& lines) {
+  return {lines, {60, 110, 200}, {36, 38, 44}, 1.0, 2};
+}
+
 // The title block's lines: the ply, then the afp rules' figures packed `width` pixels a line.
 std::vector<std::string> TitleLines(const verify::Verifier& v, const scene::Scene& scene,
                                     const verify::CoverageImage& img, const PlyFacts& f,
@@ -375,7 +380,7 @@ CoveragePicture Picture(const verify::Verifier& v, const scene::Scene& scene,
                     : std::max(kCovLeft + f.width + 2 * kCovGap + std::max(legend_w, 520), 1100);
   pic.title = TitleLines(v, scene, cov, facts, fonts, img.width - 40);
   const std::vector<std::string>& title = pic.title;
-  const int title_h = uv::DrawTitleBlock(nullptr, fonts, title, {60, 110, 200});
+  const int title_h = render::DrawTitleBand(nullptr, fonts, TitleBandOf(title));
   f.x0 = kCovLeft;
   f.top = title_h + kCovGap;
   img.height = below ? f.top + f.height + kCovBottom + legend_h + 20
@@ -410,7 +415,7 @@ CoveragePicture Picture(const verify::Verifier& v, const scene::Scene& scene,
     else
       uv::Cross(img, p, 3, kCutMark);
   }
-  uv::DrawTitleBlock(&img, fonts, title, {60, 110, 200});
+  render::DrawTitleBand(&img, fonts, TitleBandOf(title));
   const uv::AxisTicks ticks = uv::DrawAxes(img, font, f, 8);
   pic.u_ticks = ticks.u;
   pic.v_ticks = ticks.v;

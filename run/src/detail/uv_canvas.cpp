@@ -144,27 +144,6 @@ double DrawScaleBar(render::Image& img, const render::Font& f, int x, int y, dou
   return mm;
 }
 
-int DrawTitleBlock(render::Image* img, const render::SnapshotFonts& fonts,
-                   const std::vector<std::string>& lines, const render::Rgb& accent) {
-  const render::Font& b = *fonts.bold;
-  const render::Font& r = *fonts.regular;
-  const int pad = std::max(4, r.PixelHeight() / 2);
-  const int bold_row = b.Ascender() + b.Descender(), row = r.Ascender() + r.Descender() + 2;
-  const int height = pad + bold_row + pad / 2 +
-                     static_cast<int>(lines.size() > 1 ? lines.size() - 1 : 0) * row + pad;
-  if (img == nullptr) return height;
-  Fill(*img, 0, 0, img->width, height, {36, 38, 44});
-  const int stripe = std::max(4, pad);
-  Fill(*img, 0, 0, stripe, height, accent);
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    const int y = i == 0 ? pad + b.Ascender()
-                         : pad + bold_row + pad / 2 + r.Ascender() + static_cast<int>(i - 1) * row;
-    render::DrawText(*img, i == 0 ? b : r, stripe + pad, y, lines[i],
-                     i == 0 ? render::Rgb{255, 255, 255} : render::Rgb{225, 228, 232});
-  }
-  return height;
-}
-
 int LegendWidth(const render::Font& f, const std::vector<LegendRow>& rows) {
   const int pad = std::max(4, f.PixelHeight() / 2);
   int text = 0;

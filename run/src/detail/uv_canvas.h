@@ -58,11 +58,6 @@ AxisTicks DrawAxes(render::Image& img, const render::Font& font, const UvFrame& 
 double DrawScaleBar(render::Image& img, const render::Font& font, int x, int y, double px_per_mm,
                     int max_px);
 
-/// A title block across the top of `img`: a dark band with an accent stripe, `lines[0]` bold,
-/// the others regular, white. Returns its height (pixels); with a null `img` only measures.
-int DrawTitleBlock(render::Image* img, const render::SnapshotFonts& fonts,
-                   const std::vector<std::string>& lines, const render::Rgb& accent);
-
 /// One legend row: a swatch (a filled square, a line, an arrow, a disc or a cross) and its text.
 struct LegendRow {
   enum class Swatch { kFill, kLine, kThinLine, kArrow, kDisc, kCross, kNone };

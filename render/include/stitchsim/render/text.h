@@ -74,6 +74,19 @@ struct TitleBar {
 /// height in pixels.
 int DrawTitleBar(Image& image, const SnapshotFonts& fonts, const TitleBar& title);
 
+/// A title band of any number of lines (the title bar's layout): `lines[0]` bold, the others
+/// regular, `row_gap` pixels between them, each cut to the image's width.
+struct TitleBand {
+  std::vector<std::string> lines;
+  Rgb accent = {200, 30, 30};     ///< the stripe at the band's left
+  Rgb background = {24, 26, 30};  ///< the band, over the picture at `opacity`
+  double opacity = 0.88;
+  int row_gap = 0;
+};
+/// Burns `band` over the top of `image` and returns its height in pixels; with a null `image`
+/// only measures.
+int DrawTitleBand(Image* image, const SnapshotFonts& fonts, const TitleBand& band);
+
 /// One row of a legend: a colour swatch and what it means.
 struct LegendEntry {
   Rgb colour = {0, 0, 0};
