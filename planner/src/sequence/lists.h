@@ -31,4 +31,11 @@ struct NodeLists {
 /// The lists, O(n^2) moves priced through `tour` (its table when there is one).
 NodeLists BuildNodeLists(const Tour& tour, const SequenceProblem& p, int k);
 
+/// The greedy construction (one set, no groups): the moves of the lists, cheapest first
+/// (ties by node), each kept if it joins the end of one chain of courses to the start of
+/// another, each course laid one way (bidirectional: a chain may be turned round, every course
+/// flipped, to make the join); then, from p.start, repeatedly the chain whose first visit (or,
+/// bidirectional, whose turned first visit) is the cheapest move away, laid whole.
+std::vector<Visit> GreedyTour(const SequenceProblem& p, const NodeLists& lists);
+
 }  // namespace stitchsim::planner::detail

@@ -1,9 +1,19 @@
 // Our ordering solver: iterated local search. The lead copies this block into
 // docs/sequence.md.
 //
-// Construction. From p.start, repeatedly the cheapest move to an unvisited visit (each course
-// forwards, and backwards when bidirectional; with groups, only courses of the earliest
-// group not yet finished); ties by course, then forwards first. Or the caller's order.
+// Construction. Nearest neighbour: from p.start, repeatedly the cheapest move to an unvisited
+// visit (each course forwards, and backwards when bidirectional; with groups, only courses of
+// the earliest group not yet finished); ties by course, then forwards first. Bidirectional
+// (one set) also greedy (lists.h): the listed moves cheapest first, each kept if it joins the
+// end of one chain of courses to the start of another, a chain turned round (every course
+// flipped) where that makes the join; then the chains from p.start, the nearest next. The
+// cheaper of the two is the start. Nearest neighbour chooses each course's direction for the
+// next move only: on a plate of parallel courses in columns it takes the return along a column
+// (cheaper than turning the head) again and again, and the search needed seconds to turn it
+// into sweeps across the columns (bench/sequence_budget.sh: 290 after the first descent
+// against 106 from the greedy start, whose chains are those sweeps). Forward-only keeps
+// nearest neighbour: on TSPLIB's rat195 and gil262 the greedy start ended 0.2 % and 0.1 %
+// above the optimum where nearest neighbour's reaches it. Or the caller's order.
 //
 // Moves (Tour, tour.h, prices each exactly in O(1) from prefix sums of the tour's forward
 // cost, of its backwards traversal with every course as laid, and with every course flipped;
@@ -18,6 +28,11 @@
 //   bidirectional, driven backwards (the 3-opt "or-3opt" move, and with the stretch turned);
 //   both new links from the lists. (The stretch in reverse order, each course laid its way,
 //   is left out: on the TSPLIB programmes it led the search to worse orders, a280 +0.8 %.)
+// - Swap: two courses exchange places, each laid its way or, bidirectional, flipped (the
+//   cheaper of the four); one new link from the lists at the course popped (its new neighbour,
+//   or the course taking its place). Two Or-opt moves of which the first alone costs more: on
+//   a plate of sweeps it moves a course into the sweep that lacks its column while the sweep
+//   with two gives it up (bench/sequence_budget.sh, 2 s: 109.9 with it, 114.3 without).
 // Candidates come from k-nearest lists per visit (a course in one direction): the
 // options.neighbours visits of other courses (same or neighbouring group) with the cheapest
 // move into it, and out of it (O(n^2) moves to build, once). A move is tried only if one of
@@ -68,11 +83,11 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
-#include <deque>
 #include <limits>
 #include <random>
 #include <thread>
 
+#include "descent.h"
 #include "detail.h"
 #include "lists.h"
 #include "stitchsim/planner/sequence/solver.h"
@@ -88,11 +103,11 @@ using detail::TourMove;
 using Kind = TourMove::Kind;
 using detail::BuildNodeLists;
 using detail::Candidate;
+using detail::Descent;
 using detail::NearestNeighbourTour;
 using detail::NodeLists;
 
 constexpr std::uint64_t kKickSeed = 0x5eed004;
-constexpr int kMaxChain = 3;
 constexpr int kMaxKickStretch = 30;
 constexpr std::uint64_t kMaxKicks = 3;
 constexpr int kDefaultStarts = 2;
@@ -104,261 +119,6 @@ constexpr int kSmallSetStarts = 8;
 constexpr std::int64_t kMinStagnation = 5000;
 constexpr std::int64_t kStagnationPerCourse = 10;
 constexpr std::int64_t kRoundsPerStagnation = 50;
-
-/// The descent: candidate moves around queued courses, best improving one applied.
-class Descent {
- public:
-  Descent(const SequenceProblem& p, Tour& tour, const NodeLists& lists, double eps)
-      : p_(p),
-        tour_(tour),
-        lists_(lists),
-        eps_(eps),
-        queued_(static_cast<std::size_t>(p.courses), 0) {}
-
-  void Push(int course) {
-    if (queued_[course]) return;
-    queued_[course] = 1;
-    queue_.push_back(course);
-  }
-  /// Queues the courses at the links a move changes (call before applying it).
-  void PushEnds(const TourMove& m);
-  /// Descends, then re-chooses every course's direction for the order found, and descends
-  /// again while that helps; returns the moves applied.
-  std::int64_t Run() {
-    std::int64_t applied = Drain();
-    std::vector<Visit> turned;
-    while (p_.bidirectional && tour_.Size() > 0) {
-      // Directions afresh over the stretch the moves changed (and one course either side).
-      const int lo = std::max(0, tour_.TouchedBegin() - 1);
-      const int hi = std::min(tour_.Size() - 1, tour_.TouchedEnd() + 1);
-      tour_.ClearTouched();
-      const double delta = tour_.BestDirections(lo, hi, turned);
-      if (!(delta < -eps_)) break;
-      for (int x = lo; x <= hi; ++x) {
-        if (turned[x - lo].reversed != tour_.At(x).reversed) QueueAround(x);
-      }
-      tour_.Turn(lo, turned, delta);
-      applied += 1 + Drain();
-    }
-    return applied;
-  }
-
- private:
-  void QueueAround(int x) {
-    for (int y = std::max(0, x - 1); y <= std::min(tour_.Size() - 1, x + 1); ++y)
-      Push(tour_.At(y).course);
-  }
-  /// Runs until no queued course has an improving move; returns the moves applied.
-  std::int64_t Drain() {
-    std::int64_t applied = 0;
-    while (!queue_.empty()) {
-      const int c = queue_.front();
-      queue_.pop_front();
-      queued_[c] = 0;
-      best_ = TourMove{};
-      best_.delta = -eps_;
-      TryAround(tour_.PositionOf(c));
-      if (best_.kind == Kind::kNone) continue;
-      PushEnds(best_);
-      tour_.Apply(best_);
-      Push(c);
-      ++applied;
-    }
-    return applied;
-  }
-  /// Position of v's course if it is laid as v now, else -1.
-  int Where(Visit v) const {
-    const int x = tour_.PositionOf(v.course);
-    return tour_.At(x).reversed == v.reversed ? x : -1;
-  }
-  int WhereNode(int node) const { return Where(detail::NodeVisit(node)); }
-  void Offer(Kind kind, int i, int k, int g, Stretch how, double delta) {
-    if (delta < best_.delta) best_ = TourMove{kind, i, k, g, how, delta};
-  }
-  void TryReverse(int i, int k, Stretch how) {
-    if (!tour_.CanTurn(i, k) || (how == Stretch::kReverse && i == k)) return;
-    if (how == Stretch::kFlip && !p_.bidirectional) return;
-    Offer(Kind::kReverse, i, k, 0, how, tour_.ReverseDelta(i, k, how));
-  }
-  void TryChain(int i, int k, int g, Stretch how) {
-    if (!tour_.CanMove(i, k, g)) return;
-    if (how == Stretch::kFlip && !p_.bidirectional) return;
-    if (how == Stretch::kReverse && i == k) return;
-    Offer(Kind::kChain, i, k, g, how, tour_.ChainDelta(i, k, g, how));
-  }
-  /// For every new link u -> `node` from the lists cheaper than `limit`, with u laid at g,
-  /// and every new link w -> t[g + 1] from the lists cheaper than the link into g + 1 now:
-  /// f(g, w).
-  template <class F>
-  void EnterFrom(int node, double limit, F&& f) {
-    for (const Candidate& nu : lists_.in[node]) {
-      if (nu.cost >= limit) break;
-      const int g = WhereNode(nu.node);
-      if (g < 0 || g + 1 >= tour_.Size()) continue;
-      const double gap = tour_.CostInto(g + 1);
-      for (const Candidate& nw : lists_.in[detail::VisitNode(tour_.At(g + 1))]) {
-        if (nw.cost >= gap) break;
-        f(g, detail::NodeVisit(nw.node));
-      }
-    }
-  }
-  /// For every new link `node` -> v from the lists cheaper than `limit`, with v laid at h + 1,
-  /// and every new link t[h] -> w from the lists cheaper than the link out of h now: f(h, w).
-  template <class F>
-  void LeaveTo(int node, double limit, F&& f) {
-    for (const Candidate& nv : lists_.out[node]) {
-      if (nv.cost >= limit) break;
-      const int h = WhereNode(nv.node) - 1;
-      if (h < 0) continue;
-      const double gap = tour_.CostOutOf(h);
-      for (const Candidate& nw : lists_.out[detail::VisitNode(tour_.At(h))]) {
-        if (nw.cost >= gap) break;
-        f(h, detail::NodeVisit(nw.node));
-      }
-    }
-  }
-  void TryAround(int x);
-  void TryReversals(int x);
-  void TryFlips(int x);
-  void TryOrOpt(int i, int k);
-  void TrySegments(int x);
-
-  const SequenceProblem& p_;
-  Tour& tour_;
-  const NodeLists& lists_;
-  double eps_;
-  std::deque<int> queue_;
-  std::vector<char> queued_;
-  TourMove best_;
-};
-
-void Descent::TryAround(int x) {
-  TryReversals(x);
-  if (p_.bidirectional) TryFlips(x);
-  for (int len = 1; len <= kMaxChain; ++len) TryOrOpt(x, x + len - 1);
-  TrySegments(x);
-}
-
-// A stretch visited in reverse order, each course laid its own way: new links
-// t[i-1] -> t[k] and t[i] -> t[k+1], one of them from the lists with the course at x as an end.
-void Descent::TryReversals(int x) {
-  const Visit cv = tour_.At(x);
-  const int c = detail::VisitNode(cv);
-  const int lo = tour_.BlockBegin(x), hi = tour_.BlockEnd(x);
-  TryReverse(lo, x, Stretch::kReverse);
-  TryReverse(x, hi, Stretch::kReverse);
-  const double out = tour_.CostOutOf(x), in = tour_.CostInto(x);
-  for (const Candidate& nv : lists_.out[c]) {  // new link c -> v replaces c's way out
-    if (nv.cost >= out) break;
-    const int v = nv.node;
-    const int y = WhereNode(v);
-    if (y > x) TryReverse(x + 1, y, Stretch::kReverse);  // c -> t[k]: stretch x+1..y
-    if (y > x) TryReverse(x, y - 1, Stretch::kReverse);  // t[i] = c -> t[k+1] = v
-  }
-  for (const Candidate& nu : lists_.in[c]) {  // new link u -> c replaces c's way in
-    if (nu.cost >= in) break;
-    const int u = nu.node;
-    const int y = WhereNode(u);
-    if (y >= 0 && y < x) TryReverse(y, x - 1, Stretch::kReverse);  // t[i] = u -> t[k+1] = c
-    if (y >= 0 && y < x) TryReverse(y + 1, x, Stretch::kReverse);  // t[i-1] = u -> t[k] = c
-  }
-}
-
-// Bidirectional: a stretch driven backwards, every course flipped.
-void Descent::TryFlips(int x) {
-  const int n = tour_.Size();
-  const Visit c = tour_.At(x);
-  TryReverse(x, x, Stretch::kFlip);
-  TryReverse(std::max(0, tour_.BlockBegin(x)), x, Stretch::kFlip);
-  TryReverse(x, std::min(n - 1, tour_.BlockEnd(x)), Stretch::kFlip);
-  for (const Candidate& nv : lists_.out[detail::VisitNode(c)]) {
-    const int v = nv.node;
-    TryReverse(x + 1, Where(detail::Flip(detail::NodeVisit(v))), Stretch::kFlip);
-  }
-  for (const Candidate& nu : lists_.in[detail::VisitNode(c)]) {
-    const int u = nu.node;
-    TryReverse(Where(detail::Flip(detail::NodeVisit(u))), x - 1, Stretch::kFlip);
-  }
-  for (const Candidate& nv : lists_.out[detail::VisitNode(detail::Flip(c))]) {
-    const int v = nv.node;
-    const int y = WhereNode(v);
-    if (y >= 0) TryReverse(x, y - 1, Stretch::kFlip);
-  }
-  for (const Candidate& nu : lists_.in[detail::VisitNode(detail::Flip(c))]) {
-    const int u = nu.node;
-    const int y = WhereNode(u);
-    if (y >= 0) TryReverse(y + 1, x, Stretch::kFlip);
-  }
-}
-
-void Descent::TryOrOpt(int i, int k) {
-  const int n = tour_.Size();
-  if (i < 0 || k >= n) return;
-  // The chain's links with the tour: a new link into it must beat the one into it now, a new
-  // link out of it the one out of it now (the gain criterion on sorted lists).
-  const double cut_in = std::max(tour_.CostInto(i), tour_.CostOutOf(k)), cut_out = cut_in;
-  for (const Stretch how : {Stretch::kKeep, Stretch::kReverse, Stretch::kFlip}) {
-    if ((how == Stretch::kFlip && !p_.bidirectional) || (how == Stretch::kReverse && i == k))
-      continue;
-    TryChain(i, k, tour_.BlockBegin(i) - 1, how);
-    TryChain(i, k, tour_.BlockEnd(i), how);
-    const Visit first = how == Stretch::kKeep      ? tour_.At(i)
-                        : how == Stretch::kReverse ? tour_.At(k)
-                                                   : detail::Flip(tour_.At(k));
-    const Visit last = how == Stretch::kKeep      ? tour_.At(k)
-                       : how == Stretch::kReverse ? tour_.At(i)
-                                                  : detail::Flip(tour_.At(i));
-    for (const Candidate& nu : lists_.in[detail::VisitNode(first)]) {
-      if (nu.cost >= cut_in) break;
-      const int u = nu.node;
-      const int g = WhereNode(u);
-      if (g >= 0) TryChain(i, k, g, how);
-    }
-    for (const Candidate& nv : lists_.out[detail::VisitNode(last)]) {
-      if (nv.cost >= cut_out) break;
-      const int v = nv.node;
-      const int h = WhereNode(v);
-      if (h >= 0) TryChain(i, k, h - 1, how);
-    }
-  }
-}
-
-// Stretches of any length moved elsewhere, laid as they were or driven backwards
-// (bidirectional): both new links from the lists, one at the course at x, the stretch's first
-// or last position.
-void Descent::TrySegments(int x) {
-  const Visit cv = tour_.At(x);
-  const double in = tour_.CostInto(x), out = tour_.CostOutOf(x);
-  const int kept = detail::VisitNode(cv), turned = detail::VisitNode(detail::Flip(cv));
-  // x first (i = x), the new link replacing the one into x: kept, x entered from t[g] and
-  // t[k] -> t[g + 1]; driven backwards, flip(t[x]) -> t[g + 1] and t[g] -> flip(t[k]).
-  EnterFrom(kept, in, [&](int g, Visit w) { TryChain(x, Where(w), g, Stretch::kKeep); });
-  if (p_.bidirectional) {
-    LeaveTo(turned, in, [&](int g, Visit w) {
-      const int k = Where(detail::Flip(w));
-      if (k >= x) TryChain(x, k, g, Stretch::kFlip);
-    });
-  }
-  // x last (k = x), the new link replacing the one out of x: kept, x -> t[h + 1] and
-  // t[h] -> t[i]; driven backwards, t[g] -> flip(t[x]) and flip(t[i]) -> t[g + 1].
-  LeaveTo(kept, out, [&](int h, Visit w) {
-    const int i = Where(w);
-    if (i >= 0) TryChain(i, x, h, Stretch::kKeep);
-  });
-  if (p_.bidirectional) {
-    EnterFrom(turned, out, [&](int g, Visit w) {
-      const int i = Where(detail::Flip(w));
-      if (i >= 0 && i <= x) TryChain(i, x, g, Stretch::kFlip);
-    });
-  }
-}
-
-void Descent::PushEnds(const TourMove& m) {
-  const int n = tour_.Size();
-  for (int x : {m.i - 1, m.i, m.k, m.k + 1, m.g, m.g + 1}) {
-    if (x >= 0 && x < n) Push(tour_.At(x).course);
-  }
-}
 
 /// A kick: a random stretch of 1..max_stretch courses of one block moved at most
 /// 2 max_stretch positions away within it, laid as it was, reversed or (bidirectional)
@@ -459,13 +219,23 @@ SearchSetup MakeSetup(const SequenceProblem& p, const LocalSearchOptions& o,
                       std::chrono::steady_clock::time_point t0) {
   const int n = p.courses;
   SearchSetup setup{p, {}, {}, 0.0, 0.0, {}, 0, 0, 1, 0.0, t0};
-  setup.initial = o.initial.empty() ? NearestNeighbourTour(p) : o.initial;
-  setup.initial_cost = PathCost(p, setup.initial);
-  setup.eps = 1e-12 * (1.0 + setup.initial_cost);
   {
-    const Tour probe(p, setup.initial);
+    std::vector<Visit> any;
+    for (int c = 0; c < n; ++c) any.push_back({c, false});
+    const Tour probe(p, std::move(any));
     setup.lists = BuildNodeLists(probe, p, o.neighbours);
   }
+  if (!o.initial.empty()) {
+    setup.initial = o.initial;
+  } else {
+    setup.initial = NearestNeighbourTour(p);
+    if (p.bidirectional && p.group.empty()) {
+      std::vector<Visit> greedy = detail::GreedyTour(p, setup.lists);
+      if (PathCost(p, greedy) < PathCost(p, setup.initial)) setup.initial = std::move(greedy);
+    }
+  }
+  setup.initial_cost = PathCost(p, setup.initial);
+  setup.eps = 1e-12 * (1.0 + setup.initial_cost);
   setup.stagnation =
       o.stagnation > 0 ? o.stagnation : std::max(kMinStagnation, kStagnationPerCourse * n);
   setup.max_rounds = o.max_rounds >= 0 ? o.max_rounds : kRoundsPerStagnation * setup.stagnation;
