@@ -15,40 +15,6 @@ void Descent::TryAround(int x) {
   if (p_.bidirectional) TryFlips(x);
   for (int len = 1; len <= kMaxChain; ++len) TryOrOpt(x, x + len - 1);
   TrySegments(x);
-  TrySwaps(x);
-}
-
-// Two courses exchanged (each flipped or not, bidirectional): one new link from the lists at
-// the course at x, either its new neighbour or the course that takes its place.
-void Descent::TrySwaps(int x) {
-  const int n = tour_.Size();
-  const Visit cv = tour_.At(x);
-  // A new link must be cheaper than the link at x it replaces (the gain criterion).
-  const double in = tour_.CostInto(x), out = tour_.CostOutOf(x);
-  const auto at = [this](int node) { return tour_.PositionOf(NodeVisit(node).course); };
-  if (x > 0) {  // the course taking x's place, entered from t[x - 1]
-    for (const Candidate& nv : lists_.out[VisitNode(tour_.At(x - 1))]) {
-      if (nv.cost >= in) break;
-      TrySwap(x, at(nv.node));
-    }
-  }
-  if (x + 1 < n) {  // the course taking x's place, leaving to t[x + 1]
-    for (const Candidate& nu : lists_.in[VisitNode(tour_.At(x + 1))]) {
-      if (nu.cost >= out) break;
-      TrySwap(x, at(nu.node));
-    }
-  }
-  for (const Visit v : {cv, Flip(cv)}) {  // x's course at its new place
-    if (!p_.bidirectional && v.reversed != cv.reversed) continue;
-    for (const Candidate& nu : lists_.in[VisitNode(v)]) {
-      if (nu.cost >= in) break;
-      TrySwap(x, at(nu.node) + 1);
-    }
-    for (const Candidate& nw : lists_.out[VisitNode(v)]) {
-      if (nw.cost >= out) break;
-      TrySwap(x, at(nw.node) - 1);
-    }
-  }
 }
 
 // A stretch visited in reverse order, each course laid its own way: new links
@@ -167,12 +133,6 @@ void Descent::TrySegments(int x) {
 
 void Descent::PushEnds(const TourMove& m) {
   const int n = tour_.Size();
-  if (m.kind == Kind::kSwap) {
-    for (int x : {m.i - 1, m.i, m.i + 1, m.k - 1, m.k, m.k + 1}) {
-      if (x >= 0 && x < n) Push(tour_.At(x).course);
-    }
-    return;
-  }
   for (int x : {m.i - 1, m.i, m.k, m.k + 1, m.g, m.g + 1}) {
     if (x >= 0 && x < n) Push(tour_.At(x).course);
   }

@@ -131,15 +131,6 @@ class Descent {
   void TryFlips(int x);
   void TryOrOpt(int i, int k);
   void TrySegments(int x);
-  void TrySwaps(int x);
-  void TrySwap(int x, int y) {
-    if (y < 0 || y >= tour_.Size() || y == x) return;
-    const int i = std::min(x, y), k = std::max(x, y);
-    if (!tour_.CanTurn(i, k)) return;
-    int flips = 0;
-    const double d = tour_.BestSwap(i, k, flips);
-    Offer(TourMove::Kind::kSwap, i, k, flips, Stretch::kKeep, d);
-  }
 
   const SequenceProblem& p_;
   Tour& tour_;

@@ -12,8 +12,9 @@
 // (cheaper than turning the head) again and again, and the search needed seconds to turn it
 // into sweeps across the columns (bench/sequence_budget.sh: 290 after the first descent
 // against 106 from the greedy start, whose chains are those sweeps). Forward-only keeps
-// nearest neighbour: on TSPLIB's rat195 and gil262 the greedy start ended 0.2 % and 0.1 %
-// above the optimum where nearest neighbour's reaches it. Or the caller's order.
+// nearest neighbour: in a trial on TSPLIB (with a swap move, since dropped) the greedy start
+// ended gil262 0.08 % above its optimum where nearest neighbour's reached it. Or the caller's
+// order.
 //
 // Moves (Tour, tour.h, prices each exactly in O(1) from prefix sums of the tour's forward
 // cost, of its backwards traversal with every course as laid, and with every course flipped;
@@ -28,11 +29,6 @@
 //   bidirectional, driven backwards (the 3-opt "or-3opt" move, and with the stretch turned);
 //   both new links from the lists. (The stretch in reverse order, each course laid its way,
 //   is left out: on the TSPLIB programmes it led the search to worse orders, a280 +0.8 %.)
-// - Swap: two courses exchange places, each laid its way or, bidirectional, flipped (the
-//   cheaper of the four); one new link from the lists at the course popped (its new neighbour,
-//   or the course taking its place). Two Or-opt moves of which the first alone costs more: on
-//   a plate of sweeps it moves a course into the sweep that lacks its column while the sweep
-//   with two gives it up (bench/sequence_budget.sh, 2 s: 109.9 with it, 114.3 without).
 // Candidates come from k-nearest lists per visit (a course in one direction): the
 // options.neighbours visits of other courses (same or neighbouring group) with the cheapest
 // move into it, and out of it (O(n^2) moves to build, once). A move is tried only if one of

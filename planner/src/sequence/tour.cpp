@@ -85,50 +85,11 @@ double Tour::ChainDelta(int i, int k, int g, Stretch how) const {
   return removal + insertion + Inside(i, k, how) - Inside(i, k, Stretch::kKeep);
 }
 
-double Tour::SwapDelta(int i, int k, int flips) const {
-  const Visit a = (flips & 1) != 0 ? Flip(t_[k]) : t_[k];  // lands at i
-  const Visit b = (flips & 2) != 0 ? Flip(t_[i]) : t_[i];  // lands at k
-  if (k == i + 1) {
-    return In(i - 1, a) + E(a, b) + Out(b, k + 1) -
-           (In(i - 1, t_[i]) + E(t_[i], t_[k]) + Out(t_[k], k + 1));
-  }
-  return In(i - 1, a) + E(a, t_[i + 1]) + E(t_[k - 1], b) + Out(b, k + 1) -
-         (In(i - 1, t_[i]) + E(t_[i], t_[i + 1]) + E(t_[k - 1], t_[k]) + Out(t_[k], k + 1));
-}
-
-double Tour::BestSwap(int i, int k, int& flips) const {
-  flips = 0;
-  if (!p_.bidirectional) return SwapDelta(i, k, 0);
-  if (k == i + 1) {  // the two new places share a link: every pair of directions
-    double best = SwapDelta(i, k, 0);
-    for (int f = 1; f < 4; ++f) {
-      const double d = SwapDelta(i, k, f);
-      if (d < best) {
-        best = d;
-        flips = f;
-      }
-    }
-    return best;
-  }
-  // Apart, each course's direction is chosen for its own new place.
-  const Visit a = t_[k], b = t_[i];
-  const double a0 = In(i - 1, a) + E(a, t_[i + 1]), a1 = In(i - 1, Flip(a)) + E(Flip(a), t_[i + 1]);
-  const double b0 = E(t_[k - 1], b) + Out(b, k + 1),
-               b1 = E(t_[k - 1], Flip(b)) + Out(Flip(b), k + 1);
-  flips = (a1 < a0 ? 1 : 0) | (b1 < b0 ? 2 : 0);
-  return std::min(a0, a1) + std::min(b0, b1) -
-         (In(i - 1, t_[i]) + E(t_[i], t_[i + 1]) + E(t_[k - 1], t_[k]) + Out(t_[k], k + 1));
-}
-
 void Tour::Apply(const TourMove& m) {
   if (m.kind == TourMove::Kind::kNone) return;
   const auto begin = t_.begin();
   int from = m.i, to = m.k;
-  if (m.kind == TourMove::Kind::kSwap) {
-    std::swap(t_[m.i], t_[m.k]);
-    if ((m.g & 1) != 0) t_[m.i] = Flip(t_[m.i]);
-    if ((m.g & 2) != 0) t_[m.k] = Flip(t_[m.k]);
-  } else if (m.kind == TourMove::Kind::kReverse) {
+  if (m.kind == TourMove::Kind::kReverse) {
     std::reverse(begin + m.i, begin + m.k + 1);
     if (m.how == Stretch::kFlip) {
       for (int x = m.i; x <= m.k; ++x) t_[x] = Flip(t_[x]);
@@ -151,8 +112,8 @@ void Tour::Apply(const TourMove& m) {
     }
   }
   cost_ += m.delta;
-  const bool in_place = m.kind != TourMove::Kind::kChain;
-  TouchRange(in_place ? m.i : std::min(m.i, m.g + 1), in_place ? m.k : std::max(m.k, m.g));
+  TouchRange(m.kind == TourMove::Kind::kReverse ? m.i : std::min(m.i, m.g + 1),
+             m.kind == TourMove::Kind::kReverse ? m.k : std::max(m.k, m.g));
   // Now and then the whole tour afresh, so the constant shifts below never drift.
   if (++applied_ % kFullRefresh == 0) {
     Refresh(0, Size() - 1);

@@ -22,11 +22,10 @@ enum class Stretch : std::uint8_t { kKeep, kReverse, kFlip };
 
 /// A candidate change of the tour and its exact cost change.
 struct TourMove {
-  enum class Kind { kNone, kReverse, kChain, kSwap } kind = Kind::kNone;
-  int i = 0;  ///< first position of the stretch (kSwap: the first course's)
-  int k = 0;  ///< last position of the stretch (kSwap: the second course's)
-  int g = 0;  ///< kChain: the stretch goes after position g (-1: first); kSwap: which courses
-              ///< are flipped as they change places (bit 0: the one landing at i, bit 1: at k)
+  enum class Kind { kNone, kReverse, kChain } kind = Kind::kNone;
+  int i = 0;                     ///< first position of the stretch
+  int k = 0;                     ///< last position of the stretch
+  int g = 0;                     ///< kChain: the stretch goes after position g (-1: first)
   Stretch how = Stretch::kKeep;  ///< kReverse: kReverse or kFlip; kChain: any
   double delta = 0.0;
 };
@@ -69,12 +68,6 @@ class Tour {
   double ReverseDelta(int i, int k, Stretch how) const;
   /// Cost change of moving stretch i..k to after position g, laid `how`.
   double ChainDelta(int i, int k, int g, Stretch how) const;
-  /// Cost change of exchanging the courses at positions i < k (one block), each flipped as
-  /// `flips` says (TourMove::g).
-  double SwapDelta(int i, int k, int flips) const;
-  /// The cheapest SwapDelta of i and k over the flips allowed (bidirectional: all four);
-  /// `flips` gets its choice.
-  double BestSwap(int i, int k, int& flips) const;
   /// Applies a move priced by the functions above (O(n)).
   void Apply(const TourMove& m);
   /// Bidirectional: the best direction of every course at positions lo..hi for the current
