@@ -446,6 +446,10 @@ TEST(SequenceSolver, BidirectionalPlateIsLaidInSweepsWithoutAKick) {
   no_kicks.max_rounds = 0;
   no_kicks.starts = 2;
   const SequenceSolution s = SolveLocalSearch(p, no_kicks);
+  std::set<int> laid;
+  for (const Visit& v : s.order) laid.insert(v.course);
+  ASSERT_EQ(s.order.size(), static_cast<std::size_t>(p.courses));
+  ASSERT_EQ(laid.size(), static_cast<std::size_t>(p.courses));  // every course, once
   EXPECT_NEAR(IndependentCost(p, s.order), s.cost, 1e-9);
   EXPECT_LE(s.cost, sweeps + 1e-9);
   // And the sweeps indeed: every move is a 20 mm hop or a turn onto the next row.
